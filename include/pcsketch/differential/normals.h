@@ -1,0 +1,30 @@
+#pragma once
+// Normals by PCA of each point's neighbourhood.
+
+#include <vector>
+
+#include "pcsketch/core/point_cloud.h"
+#include "pcsketch/core/report.h"
+#include "pcsketch/neighbourhood/neighbourhoods.h"
+
+namespace pcsketch::differential {
+
+struct NormalOptions {
+  /// Neighbours used for the PCA; 0 = all of the shared neighbourhood (its k).
+  std::size_t k = 0;
+  ProgressFn progress;  ///< optional
+};
+
+struct NormalResult {
+  std::vector<Vec3f> normals;          ///< #P, unit, unoriented (sign arbitrary until orient_normals)
+  std::vector<float> surface_variation;  ///< #P, λ0/(λ0+λ1+λ2) in [0, 1/3]: 0 on a plane, large at edges and noise
+  Warnings warnings;
+};
+
+/// PCA normal of each point: eigenvector of the smallest eigenvalue of its neighbourhood's covariance.
+/// Degenerate neighbourhoods (all identical, collinear) get an arbitrary unit normal perpendicular to the data and a
+/// warning counting them; never NaN.
+NormalResult estimate_normals(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& neighbourhoods,
+                              const NormalOptions& options = {});
+
+}  // namespace pcsketch::differential

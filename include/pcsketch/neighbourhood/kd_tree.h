@@ -1,0 +1,33 @@
+#pragma once
+// k-nearest and radius queries over 3D points (nanoflann behind a PImpl).
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "pcsketch/core/point_cloud.h"
+
+namespace pcsketch::neighbourhood {
+
+/// A kd-tree over `points`, which must outlive it and not change. Built once in the constructor; every const query
+/// is thread-safe (nanoflann's contract). Radii and distances are true distances, not squared.
+class KdTree {
+ public:
+  explicit KdTree(const std::vector<Vec3f>& points);
+  ~KdTree();
+  KdTree(KdTree&&) noexcept;
+  KdTree& operator=(KdTree&&) noexcept;
+
+  /// The k nearest points to `query` (fewer if the tree holds fewer), nearest first; ties in index order.
+  void knn(const Vec3f& query, std::size_t k, std::vector<std::uint32_t>& indices, std::vector<float>& distances) const;
+  /// All points within `radius` of `query`, nearest first.
+  void radius(const Vec3f& query, float radius, std::vector<std::uint32_t>& indices,
+              std::vector<float>& distances) const;
+  std::size_t size() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pcsketch::neighbourhood

@@ -1,0 +1,37 @@
+#pragma once
+// The k nearest neighbours of every point, computed once, stored flat, shared by every later stage.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "pcsketch/core/point_cloud.h"
+#include "pcsketch/core/report.h"
+#include "pcsketch/neighbourhood/kd_tree.h"
+
+namespace pcsketch::neighbourhood {
+
+struct NeighbourhoodOptions {
+  /// Neighbours per point, the point itself excluded. 16 is enough for stable PCA normals and a quadric fit
+  /// (6 unknowns) on scanned data while keeping memory at 128 bytes a point.
+  std::size_t k = 16;
+  ProgressFn progress;  ///< optional
+};
+
+/// Flat k-NN lists: neighbours of point i are indices[i*k .. i*k+k), nearest first, self excluded.
+/// A cloud with fewer than k+1 points has k = size-1.
+struct Neighbourhoods {
+  std::size_t k = 0;
+  std::vector<std::uint32_t> indices;  ///< #P*k
+  std::vector<float> distances;        ///< #P*k, true distances, ascending per point
+
+  std::size_t size() const { return k == 0 ? 0 : indices.size() / k; }
+  std::span<const std::uint32_t> of(std::size_t i) const { return {indices.data() + i * k, k}; }
+  std::span<const float> distances_of(std::size_t i) const { return {distances.data() + i * k, k}; }
+};
+
+/// k-NN of every point, in parallel; deterministic for any thread count.
+Neighbourhoods compute_neighbourhoods(const KdTree& tree, const std::vector<Vec3f>& points,
+                                      const NeighbourhoodOptions& options = {});
+
+}  // namespace pcsketch::neighbourhood

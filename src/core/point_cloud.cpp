@@ -1,0 +1,55 @@
+#include "pcsketch/core/point_cloud.h"
+
+#include <numeric>
+
+#include "pcsketch/core/assert.h"
+#include "pcsketch/core/polyline.h"
+
+namespace pcsketch {
+
+Box3f bounding_box(const std::vector<Vec3f>& positions) {
+  Box3f box;
+  for (const Vec3f& p : positions) box.extend(p);
+  return box;
+}
+
+namespace {
+template <class T>
+void apply_order(std::vector<T>& values, const std::vector<std::uint32_t>& order) {
+  if (values.empty()) return;
+  std::vector<T> out(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) out[i] = values[order[i]];
+  values.swap(out);
+}
+}  // namespace
+
+void permute(PointCloud& cloud, const std::vector<std::uint32_t>& order) {
+  PCS_ASSERT(order.size() == cloud.size(), "permutation size must match the cloud");
+  if (cloud.source_index.empty()) {
+    cloud.source_index.resize(cloud.size());
+    std::iota(cloud.source_index.begin(), cloud.source_index.end(), 0u);
+  }
+  apply_order(cloud.positions, order);
+  apply_order(cloud.normals, order);
+  apply_order(cloud.colors, order);
+  apply_order(cloud.source_index, order);
+}
+
+std::string_view to_string(LineKind kind) {
+  switch (kind) {
+    case LineKind::Contour: return "contour";
+    case LineKind::Ridge: return "ridge";
+    case LineKind::Valley: return "valley";
+    case LineKind::Hatch: return "hatch";
+  }
+  return "unknown";
+}
+
+float Polyline::length() const {
+  float total = 0.f;
+  for (std::size_t i = 1; i < points.size(); ++i) total += (points[i] - points[i - 1]).norm();
+  if (closed && points.size() > 2) total += (points.front() - points.back()).norm();
+  return total;
+}
+
+}  // namespace pcsketch

@@ -1,0 +1,100 @@
+#include "support/analytic_shapes.h"
+
+#include <cmath>
+#include <random>
+
+namespace pcsketch::test {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+/// Draws points from `gen(rng, position, normal)` (which may reject by returning false) and adds noise.
+template <class Gen>
+PointCloud generate(const SampleSpec& spec, Gen gen) {
+  std::mt19937 rng(spec.seed);
+  std::normal_distribution<float> noise(0.f, 1.f);
+  PointCloud cloud;
+  cloud.positions.reserve(spec.n);
+  cloud.normals.reserve(spec.n);
+  while (cloud.positions.size() < spec.n) {
+    Vec3f p, nrm;
+    if (!gen(rng, p, nrm)) continue;
+    if (spec.noise_sigma > 0) p += spec.noise_sigma * Vec3f(noise(rng), noise(rng), noise(rng));
+    cloud.positions.push_back(p);
+    cloud.normals.push_back(nrm.normalized());
+  }
+  return cloud;
+}
+
+float uniform(std::mt19937& rng, float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); }
+
+}  // namespace
+
+PointCloud sphere(float r, const SampleSpec& spec, const Vec3f& center) {
+  return generate(spec, [&](std::mt19937& rng, Vec3f& p, Vec3f& n) {
+    std::normal_distribution<float> g(0.f, 1.f);
+    n = Vec3f(g(rng), g(rng), g(rng));
+    if (n.norm() < 1e-6f) return false;
+    n.normalize();
+    p = center + r * n;
+    return true;
+  });
+}
+
+PointCloud cylinder(float r, float h, const SampleSpec& spec) {
+  return generate(spec, [&](std::mt19937& rng, Vec3f& p, Vec3f& n) {
+    const float t = uniform(rng, 0.f, 2 * kPi);
+    n = Vec3f(std::cos(t), std::sin(t), 0.f);
+    p = Vec3f(r * n.x(), r * n.y(), uniform(rng, -h / 2, h / 2));
+    return true;
+  });
+}
+
+PointCloud torus(float R, float r, const SampleSpec& spec) {
+  return generate(spec, [&](std::mt19937& rng, Vec3f& p, Vec3f& n) {
+    const float u = uniform(rng, 0.f, 2 * kPi), v = uniform(rng, 0.f, 2 * kPi);
+    // Area element is proportional to R + r cos v: reject to make the sampling area-uniform.
+    if (uniform(rng, 0.f, R + r) > R + r * std::cos(v)) return false;
+    n = Vec3f(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v));
+    p = Vec3f((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v));
+    return true;
+  });
+}
+
+PointCloud plane(float a, const SampleSpec& spec) {
+  return generate(spec, [&](std::mt19937& rng, Vec3f& p, Vec3f& n) {
+    p = Vec3f(uniform(rng, -a, a), uniform(rng, -a, a), 0.f);
+    n = Vec3f::UnitZ();
+    return true;
+  });
+}
+
+PointCloud saddle(float a, const SampleSpec& spec) {
+  const float max_element = std::sqrt(1.f + 8.f * a * a);
+  return generate(spec, [&](std::mt19937& rng, Vec3f& p, Vec3f& n) {
+    const float x = uniform(rng, -a, a), y = uniform(rng, -a, a);
+    const float element = std::sqrt(1.f + 4.f * x * x + 4.f * y * y);
+    if (uniform(rng, 0.f, max_element) > element) return false;
+    p = Vec3f(x, y, x * x - y * y);
+    n = Vec3f(-2.f * x, 2.f * y, 1.f);
+    return true;
+  });
+}
+
+PointCloud cube(float a, const SampleSpec& spec) {
+  return generate(spec, [&](std::mt19937& rng, Vec3f& p, Vec3f& n) {
+    const int face = std::uniform_int_distribution<int>(0, 5)(rng);
+    const int axis = face / 2;
+    const float sign = face % 2 ? 1.f : -1.f;
+    p = Vec3f(uniform(rng, -a, a), uniform(rng, -a, a), uniform(rng, -a, a));
+    p[axis] = sign * a;
+    n = Vec3f::Zero();
+    n[axis] = sign;
+    return true;
+  });
+}
+
+float diagonal(const PointCloud& cloud) { return bounding_box(cloud.positions).diagonal(); }
+
+}  // namespace pcsketch::test

@@ -1,0 +1,32 @@
+#pragma once
+// Area-uniform samples of analytic surfaces with exact normals, for known-answer tests. Deterministic per seed.
+
+#include <cstdint>
+
+#include "pcsketch/core/point_cloud.h"
+
+namespace pcsketch::test {
+
+/// Options shared by every generator.
+struct SampleSpec {
+  std::size_t n = 20000;       ///< number of points
+  std::uint32_t seed = 42;     ///< std::mt19937 seed
+  float noise_sigma = 0.f;     ///< isotropic Gaussian noise, absolute model units
+};
+
+/// Sphere of radius r centred at `center`; normals radial outward. Curvatures: k1 = k2 = 1/r.
+PointCloud sphere(float r, const SampleSpec& spec = {}, const Vec3f& center = Vec3f::Zero());
+/// Side of a cylinder around the z axis, radius r, z in [-h/2, h/2]; normals outward. k1 = 1/r, k2 = 0.
+PointCloud cylinder(float r, float h, const SampleSpec& spec = {});
+/// Torus around the z axis: tube radius r at distance R from the axis; normals outward.
+PointCloud torus(float R, float r, const SampleSpec& spec = {});
+/// Square [-a, a]² in the plane z = 0; normals +z.
+PointCloud plane(float a, const SampleSpec& spec = {});
+/// Saddle z = x² − y² over [-a, a]²; normals on the +z side. At the origin k1 = 2, k2 = −2.
+PointCloud saddle(float a, const SampleSpec& spec = {});
+/// Surface of the axis-aligned cube [-a, a]³; normals are the face normals.
+PointCloud cube(float a, const SampleSpec& spec = {});
+/// Diagonal of the bounding box of a cloud (for noise relative to the diagonal).
+float diagonal(const PointCloud& cloud);
+
+}  // namespace pcsketch::test
