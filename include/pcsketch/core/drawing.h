@@ -1,0 +1,42 @@
+#pragma once
+// A finished drawing of one view: strokes and shaded regions in image space, ready for any renderer.
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "pcsketch/core/polyline.h"
+
+namespace pcsketch {
+
+/// One pen stroke. Widths follow the paper's half-segment rule (§V, eqs. 4–5 and 10–11): segment i (points i → i+1)
+/// is drawn as two halves, its first half with width half_widths[2i], its second with half_widths[2i+1].
+struct Stroke {
+  LineKind kind = LineKind::Contour;
+  bool visible = true;              ///< hidden runs are kept (and drawn only on request, dashed)
+  bool closed = false;              ///< the last point joins the first (one more segment)
+  std::vector<Vec3f> points;        ///< #S, 3D, relative to the cloud's origin
+  std::vector<Vec2f> image_points;  ///< #S, pixels, origin top-left, v down
+  std::vector<float> widths;        ///< #S, per-vertex width t_p·cofi, output pixels
+  std::vector<float> half_widths;   ///< 2 per segment, output pixels (see above)
+  float grey = 0.f;                 ///< ink level: 0 = black … 1 = white (hatch strokes get lighter far from the line)
+
+  std::size_t segments() const { return points.size() < 2 ? 0 : points.size() - 1 + (closed ? 1 : 0); }
+};
+
+/// A filled region (shadow block, paper §VI.B "area 1 > area 2 > area 3").
+struct ShadeRegion {
+  std::vector<Vec2f> polygon;  ///< pixels, closed implicitly
+  float grey = 0.5f;           ///< 0 = black … 1 = white
+};
+
+/// Everything a renderer needs, plus what reproduces it.
+struct Drawing {
+  int width = 0, height = 0;       ///< pixels
+  Vec3d origin = Vec3d::Zero();    ///< the cloud's origin: world = origin + point
+  nlohmann::json camera;           ///< Camera::to_json()
+  nlohmann::json parameters;       ///< every option used, for reproducibility
+  std::vector<Stroke> strokes;
+  std::vector<ShadeRegion> regions;
+};
+
+}  // namespace pcsketch
