@@ -1,0 +1,137 @@
+#include "pcsketch/view/surface_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "pcsketch/core/assert.h"
+#include "pcsketch/core/error.h"
+
+namespace pcsketch::view {
+
+struct SurfaceScene::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  /// Embree works in float; the scene is recentred on the box centre so that far-from-origin clouds keep precision.
+  Vec3f centre = Vec3f::Zero();
+
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+
+  RTCRay make_ray(const Vec3f& origin, const Vec3f& direction, float t_near, float t_far) const {
+    RTCRay ray{};
+    const Vec3f o = origin - centre;
+    ray.org_x = o.x();
+    ray.org_y = o.y();
+    ray.org_z = o.z();
+    ray.dir_x = direction.x();
+    ray.dir_y = direction.y();
+    ray.dir_z = direction.z();
+    ray.tnear = std::max(t_near, 0.f);
+    ray.tfar = t_far;
+    ray.mask = std::numeric_limits<unsigned>::max();
+    ray.time = 0.f;
+    ray.flags = 0;
+    return ray;
+  }
+};
+
+namespace {
+
+void check_device(RTCDevice device, const char* step) {
+  const RTCError code = rtcGetDeviceError(device);
+  if (code != RTC_ERROR_NONE)
+    throw Error(std::string("surface scene: Embree failed in ") + step + " (error " + std::to_string(code) + ")");
+}
+
+}  // namespace
+
+std::vector<float> local_spacing(const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t kth) {
+  PCS_ASSERT(kth >= 1, "local_spacing: kth counts from 1");
+  const std::size_t n = neighbourhoods.size();
+  std::vector<float> spacing(n, 0.f);
+  if (neighbourhoods.k == 0) return spacing;
+  const std::size_t j = std::min(kth, neighbourhoods.k) - 1;
+  for (std::size_t i = 0; i < n; ++i) spacing[i] = neighbourhoods.distances_of(i)[j];
+  return spacing;
+}
+
+SurfaceScene::SurfaceScene(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
+                           const std::vector<float>& spacing, const SurfaceSceneOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  const std::size_t n = positions.size();
+  if (normals.size() != n || spacing.size() != n)
+    throw Error("surface scene: positions, normals and local spacing must have one entry per point");
+  if (n > std::numeric_limits<unsigned>::max()) throw Error("surface scene: too many points for Embree");
+
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device) throw Error("surface scene: Embree device creation failed");
+  impl_->scene = rtcNewScene(impl_->device);
+  check_device(impl_->device, "scene creation");
+  if (n == 0) {
+    rtcCommitScene(impl_->scene);
+    return;
+  }
+
+  impl_->centre = bounding_box(positions).center();
+  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_ORIENTED_DISC_POINT);
+  auto* vertices = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), n));
+  auto* disc_normals = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
+  check_device(impl_->device, "buffer allocation");
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3f p = positions[i] - impl_->centre;
+    const Vec3f& nrm = normals[i];
+    const float len = nrm.norm();
+    // A point without a usable normal gets a zero radius: it keeps its index (primID = point) but is never hit.
+    const bool usable = std::isfinite(len) && len > 1e-12f && std::isfinite(spacing[i]);
+    const Vec3f unit = usable ? Vec3f(nrm / len) : Vec3f::UnitZ();
+    vertices[4 * i + 0] = p.x();
+    vertices[4 * i + 1] = p.y();
+    vertices[4 * i + 2] = p.z();
+    vertices[4 * i + 3] = usable ? options.disc_radius_factor * spacing[i] : 0.f;
+    disc_normals[3 * i + 0] = unit.x();
+    disc_normals[3 * i + 1] = unit.y();
+    disc_normals[3 * i + 2] = unit.z();
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(impl_->scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(impl_->scene);
+  check_device(impl_->device, "scene build");
+}
+
+SurfaceScene::~SurfaceScene() = default;
+SurfaceScene::SurfaceScene(SurfaceScene&&) noexcept = default;
+SurfaceScene& SurfaceScene::operator=(SurfaceScene&&) noexcept = default;
+
+std::optional<SurfaceHit> SurfaceScene::intersect(const Vec3f& origin, const Vec3f& direction, float t_near,
+                                                  float t_far) const {
+  if (!(t_far > t_near)) return std::nullopt;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rayhit{};
+  rayhit.ray = impl_->make_ray(origin, direction, t_near, t_far);
+  rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl_->scene, &context, &rayhit);
+  if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+  return SurfaceHit{rayhit.ray.tfar, rayhit.hit.primID};
+}
+
+bool SurfaceScene::occluded(const Vec3f& origin, const Vec3f& direction, float t_near, float t_far) const {
+  if (!(t_far > t_near)) return false;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray = impl_->make_ray(origin, direction, t_near, t_far);
+  rtcOccluded1(impl_->scene, &context, &ray);
+  // Embree marks an occluded ray by setting tfar to -inf.
+  return ray.tfar < 0.f;
+}
+
+}  // namespace pcsketch::view
