@@ -1,0 +1,48 @@
+#include "pcsketch/features/ridge_valley_lines.h"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "pcsketch/core/error.h"
+
+namespace pcsketch::features {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+RidgeValleyLines extract_ridge_valley_lines(const PointCloud& cloud, const differential::Surface& surface,
+                                            const RidgeValleyOptions& options) {
+  if (surface.curvature.k1.size() != cloud.size() || surface.neighbourhoods.size() != cloud.size())
+    throw Error("ridge/valley lines: the surface analysis has " + std::to_string(surface.curvature.k1.size()) +
+                " points, the cloud " + std::to_string(cloud.size()) + " (run analyse_surface on this cloud)");
+  RidgeValleyLines result;
+  auto start = std::chrono::steady_clock::now();
+  result.detection = detect_ridge_valley_points(cloud.positions, surface.curvature, surface.neighbourhoods,
+                                                surface.spacing, options.detection);
+  result.timings.detection = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  TraceResult traced = trace_lines(cloud.positions, result.detection.labels, result.detection.feature_curvature,
+                                   surface.spacing, options.tracing);
+  result.timings.tracing = seconds_since(start);
+  result.radius = traced.radius;
+
+  start = std::chrono::steady_clock::now();
+  JoinResult joined = join_lines(std::move(traced.lines), traced.radius, surface.spacing, options.joining);
+  result.timings.joining = seconds_since(start);
+  result.lines = std::move(joined.lines);
+  result.joins = joined.joins;
+  result.dropped = joined.dropped;
+  return result;
+}
+
+nlohmann::json to_json(const RidgeValleyOptions& o) {
+  return {{"detection", to_json(o.detection)}, {"tracing", to_json(o.tracing)}, {"joining", to_json(o.joining)}};
+}
+
+}  // namespace pcsketch::features
