@@ -1,0 +1,36 @@
+#include "pcsketch/render/write.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "pcsketch/core/error.h"
+#include "pcsketch/render/json.h"
+#include "pcsketch/render/pdf.h"
+#include "pcsketch/render/png.h"
+#include "pcsketch/render/svg.h"
+
+namespace pcsketch::render {
+
+namespace {
+std::string extension(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+}  // namespace
+
+bool is_supported_output(const std::filesystem::path& path) {
+  const std::string ext = extension(path);
+  return ext == ".svg" || ext == ".pdf" || ext == ".png" || ext == ".json";
+}
+
+void write_drawing(const Drawing& drawing, const std::filesystem::path& path, const RenderOptions& options) {
+  const std::string ext = extension(path);
+  if (ext == ".svg") write_svg(drawing, path, options);
+  else if (ext == ".pdf") write_pdf(drawing, path, options);
+  else if (ext == ".png") write_png(drawing, path, options);
+  else if (ext == ".json") write_json(drawing, path);
+  else throw Error(path.string() + ": output: unknown format (use .svg, .pdf, .png or .json)");
+}
+
+}  // namespace pcsketch::render
