@@ -9,7 +9,23 @@
 
 namespace pcsketch::differential {
 
+/// How each connected component is turned outward once its normals agree.
+enum class OutwardRule {
+  /// Σ n_i·(p_i − c) > 0 over the component (c its centroid): by the divergence theorem this sum is 3× the enclosed
+  /// volume for outward normals on a closed, evenly sampled surface. Uses every point, so one outlier cannot flip it.
+  Volume,
+  /// The point farthest from the centroid must face away from it (one point decides, as in Hoppe et al.).
+  FarthestPoint,
+  /// Keep the sign propagation gives (the root of each component keeps its input sign).
+  None,
+};
+
 struct OrientOptions {
+  /// Neighbours per point used as graph edges; 0 = all of the shared neighbourhood (its k). Fewer edges are faster
+  /// but may split thin parts into separate components.
+  std::size_t k = 0;
+  /// Rule turning each component outward (Volume by default: robust to outliers, unlike the farthest point).
+  OutwardRule outward = OutwardRule::Volume;
   ProgressFn progress;  ///< optional
 };
 
@@ -20,8 +36,10 @@ struct OrientResult {
 };
 
 /// Flips normals in place so that neighbours agree (propagation along a maximum-|n_i·n_j| spanning tree of the
-/// neighbour graph, Hoppe et al. 1992), then turns each component outward: the point farthest from the component's
-/// centroid must have its normal pointing away from the centroid.
+/// neighbour graph, Hoppe et al. 1992), then turns each component outward by `options.outward`.
+/// The spanning tree is Kruskal's over edge weights |n_i·n_j| quantised to 4096 levels (ties in edge order), built
+/// with a union-find that tracks relative signs: near-linear, deterministic, and the same tree Prim's propagation
+/// would grow up to the quantisation. Zero normals are left as they are.
 OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>& normals,
                             const neighbourhood::Neighbourhoods& neighbourhoods, const OrientOptions& options = {});
 

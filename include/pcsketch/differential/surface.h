@@ -16,10 +16,16 @@ namespace pcsketch::differential {
 struct SurfaceOptions {
   neighbourhood::NeighbourhoodOptions neighbourhood;
   NormalOptions normals;
+  OrientOptions orientation;
   CurvatureOptions curvature;
-  bool recompute_normals = false;  ///< ignore normals read from the file (they are kept by default)
+  /// Ignore normals read from the file and estimate them by PCA. By default file normals are trusted as they are
+  /// (scanners and meshers know the true orientation better than propagation); invalid ones (zero, NaN) force a
+  /// recompute with a warning.
+  bool recompute_normals = false;
+  /// Run the orientation pass over file normals too (for files whose normals have arbitrary signs).
+  bool orient_file_normals = false;
   bool reorder = true;             ///< sort points along a space-filling curve first (faster; source_index maps back)
-  ProgressFn progress;             ///< optional, passed to every step
+  ProgressFn progress;             ///< optional, passed to every step whose own progress is empty
 };
 
 /// Seconds spent in each step, for --timings and bench/.
@@ -31,12 +37,15 @@ struct Surface {
   neighbourhood::Neighbourhoods neighbourhoods;
   float spacing = 0;  ///< mean point spacing h, model units
   Curvature curvature;
+  bool normals_estimated = false;  ///< normals come from PCA (not from the file)
+  std::size_t components = 0;      ///< connected components found by the orientation (0 if it did not run)
   SurfaceTimings timings;
   Warnings warnings;
 };
 
 /// Runs every view-independent step on `cloud`, which it reorders and gives normals (oriented) in place.
-/// Throws pcsketch::Error for a cloud with fewer than 3 distinct points.
+/// Collinear or coplanar clouds get a defined result (arbitrary perpendicular normals, zero curvature) and warnings.
+/// @throws pcsketch::Error for a cloud with fewer than 3 distinct points (nothing to call a surface)
 Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options = {});
 
 }  // namespace pcsketch::differential

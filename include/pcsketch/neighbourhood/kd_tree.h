@@ -23,6 +23,10 @@ class KdTree {
   /// All points within `radius` of `query`, nearest first.
   void radius(const Vec3f& query, float radius, std::vector<std::uint32_t>& indices,
               std::vector<float>& distances) const;
+  /// The k nearest neighbours of the tree's own point i, nearest first, ties in index order, i itself excluded by
+  /// index (its duplicates at distance 0 are genuine neighbours). Fewer than k if the tree holds ≤ k points.
+  void knn_of_point(std::size_t i, std::size_t k, std::vector<std::uint32_t>& indices,
+                    std::vector<float>& distances) const;
   std::size_t size() const;
 
  private:

@@ -1,0 +1,209 @@
+#include "pcsketch/differential/curvature.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <optional>
+
+#include "differential/common.h"
+#include "neighbourhood/parallel_chunks.h"
+
+namespace pcsketch::differential {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Principal curvatures at one point (our sign convention) and the residual of the fit.
+struct PointFit {
+  float k1 = 0, k2 = 0;
+  Vec3f dir1 = Vec3f::UnitX(), dir2 = Vec3f::UnitY();
+  double residual = 0;  ///< RMS distance of the points to the fitted graph along the normal, dof-corrected
+};
+
+/// Right-handed orthonormal tangent frame (u, v) of a unit normal, branch-free (Duff et al. 2017).
+void tangent_frame(const Vec3d& n, Vec3d& u, Vec3d& v) {
+  const double sign = std::copysign(1.0, n.z());
+  const double a = -1.0 / (sign + n.z());
+  const double b = n.x() * n.y() * a;
+  u = Vec3d(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
+  v = Vec3d(b, sign + n.y() * n.y() * a, -n.y());
+}
+
+/// Least-squares quadric height field over the point and `neighbours` in the tangent frame of `normal`; principal
+/// curvatures from the shape operator of the fitted graph at the origin.
+PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f& normal,
+                   const std::uint32_t* neighbours, std::size_t count) {
+  PointFit fit;
+  const Vec3d n = normal.cast<double>();
+  if (!(n.squaredNorm() > 0.5)) return fit;  // no normal: no frame
+  Vec3d u, v;
+  tangent_frame(n, u, v);
+  const Vec3d origin = points[i].cast<double>();
+
+  thread_local std::vector<Vec3d> local;
+  local.resize(count + 1);
+  local[0] = Vec3d::Zero();
+  double spread = 0;
+  for (std::size_t m = 0; m < count; ++m) {
+    const Vec3d d = points[neighbours[m]].cast<double>() - origin;
+    local[m + 1] = Vec3d(d.dot(u), d.dot(v), d.dot(n));
+    spread += local[m + 1].head<2>().squaredNorm();
+  }
+  // Tangent coordinates scaled to unit RMS radius: keeps the normal equations well conditioned at any model scale.
+  const double scale = spread > 0 ? std::sqrt(static_cast<double>(count) / spread) : 1.0;
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  Eigen::Matrix<double, 6, 6> normal_matrix = Eigen::Matrix<double, 6, 6>::Zero();
+  Vec6 rhs = Vec6::Zero();
+  const auto row = [&](const Vec3d& q) {
+    const double x = q.x() * scale, y = q.y() * scale;
+    return Vec6(x * x, x * y, y * y, x, y, 1.0);
+  };
+  for (const Vec3d& q : local) {
+    const Vec6 phi = row(q);
+    normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(phi);
+    rhs += phi * q.z();
+  }
+  // A tiny ridge makes every system positive definite; in well-posed fits its effect is ~1e-9 relative, in
+  // rank-deficient ones it zeroes the unseen coefficients.
+  normal_matrix.diagonal().array() += 1e-9 * static_cast<double>(local.size());
+  const Vec6 c = normal_matrix.selfadjointView<Eigen::Lower>().llt().solve(rhs);
+  if (!c.allFinite()) return fit;
+
+  double squares = 0;
+  for (const Vec3d& q : local) squares += std::pow(q.z() - row(q).dot(c), 2);
+  const double dof = local.size() > 6 ? static_cast<double>(local.size() - 6) : 1.0;
+  fit.residual = std::sqrt(squares / dof);
+
+  // Graph z = h(x, y): derivatives at the origin in model units.
+  const double s2 = scale * scale;
+  const double hx = c[3] * scale, hy = c[4] * scale;
+  const double hxx = 2 * c[0] * s2, hxy = c[1] * s2, hyy = 2 * c[2] * s2;
+  const double e = 1 + hx * hx, f = hx * hy, g = 1 + hy * hy;
+  const double w = std::sqrt(1 + hx * hx + hy * hy);
+  const double l = hxx / w, m = hxy / w, nn = hyy / w;
+  // Eigenvalues of I⁻¹·II (curvatures towards +normal) from det(II − κ I) = 0; det I = w².
+  const double h = (l * g - 2 * m * f + nn * e) / (2 * w * w);
+  const double gauss = (l * nn - m * m) / (w * w);
+  const double root = std::sqrt(std::max(0.0, h * h - gauss));
+  const double toward_min = h - root;
+  // Convex (bending away from an outward normal) is positive: negate, so k1 = −min, k2 = −max.
+  fit.k1 = static_cast<float>(-toward_min);
+  fit.k2 = static_cast<float>(-(h + root));
+  // Eigenvector of toward_min: a row of (II − κ I) is orthogonal to it; take the better conditioned one.
+  const Eigen::Vector2d a(m - toward_min * f, -(l - toward_min * e));
+  const Eigen::Vector2d b(nn - toward_min * g, -(m - toward_min * f));
+  const Eigen::Vector2d xi = a.squaredNorm() >= b.squaredNorm() ? a : b;
+  // The tangent vector (ξ, η, hx ξ + hy η) projected onto the tangent plane of `normal` is ξ u + η v.
+  const Vec3d dir = xi.squaredNorm() > 1e-24 * (l * l + m * m + nn * nn) && xi.squaredNorm() > 0
+                        ? Vec3d(xi.x() * u + xi.y() * v).normalized()
+                        : u;  // umbilic: every direction is principal
+  fit.dir1 = dir.cast<float>();
+  fit.dir2 = n.cross(dir).cast<float>();
+  return fit;
+}
+
+/// Median of `values` (reordered).
+double median(std::vector<double>& values) {
+  if (values.empty()) return 0;
+  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
+/// Points per unit area: median over points of k / (π d_k²), d_k the distance of the k-th neighbour.
+double density(const neighbourhood::Neighbourhoods& neighbourhoods) {
+  const std::size_t k = neighbourhoods.k;
+  std::vector<double> rho;
+  rho.reserve(neighbourhoods.size());
+  for (std::size_t i = 0; i < neighbourhoods.size(); ++i) {
+    const double r = neighbourhoods.distances[i * k + k - 1];
+    if (r > 0) rho.push_back(static_cast<double>(k) / (kPi * r * r));
+  }
+  return median(rho);
+}
+
+Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
+                   const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree* given_tree,
+                   const CurvatureOptions& options) {
+  const std::size_t n = points.size();
+  detail::check_neighbourhoods("curvature", n, neighbourhoods);
+  if (normals.size() != n)
+    throw Error("curvature: " + std::to_string(normals.size()) + " normals for " + std::to_string(n) + " points");
+  Curvature result;
+  result.k1.resize(n);
+  result.k2.resize(n);
+  result.dir1.resize(n);
+  result.dir2.resize(n);
+  std::vector<double> residual(n);
+
+  std::optional<neighbourhood::KdTree> own_tree;
+  const auto run = [&](std::size_t k, bool from_tree) {
+    result.fit_neighbours = k;
+    const neighbourhood::KdTree* tree = given_tree;
+    if (from_tree && !tree) tree = &own_tree.emplace(points);
+    pcsketch::detail::parallel_chunks(n, options.progress, "curvature", [&](std::size_t begin, std::size_t end) {
+      thread_local std::vector<std::uint32_t> found;
+      thread_local std::vector<float> distances;
+      for (std::size_t i = begin; i < end; ++i) {
+        const std::uint32_t* nb = neighbourhoods.indices.data() + i * neighbourhoods.k;
+        std::size_t count = k;
+        if (from_tree) {
+          tree->knn_of_point(i, k, found, distances);
+          nb = found.data();
+          count = found.size();
+        }
+        const PointFit fit = fit_point(points, i, normals[i], nb, count);
+        result.k1[i] = fit.k1;
+        result.k2[i] = fit.k2;
+        result.dir1[i] = fit.dir1;
+        result.dir2[i] = fit.dir2;
+        residual[i] = fit.residual;
+      }
+    });
+  };
+
+  const std::size_t shared = neighbourhoods.k;
+  const std::size_t available = n == 0 ? 0 : n - 1;
+  if (options.k != 0) {
+    const std::size_t k = std::min(options.k, available);
+    run(k, k > shared);
+  } else {
+    run(shared, false);
+    std::vector<double> sorted_residual = residual;
+    result.noise_sigma = static_cast<float>(median(sorted_residual));
+    if (options.adapt_to_noise && options.noise_tolerance > 0 && shared > 0) {
+      const double wanted =
+          8.0 * result.noise_sigma * std::sqrt(kPi * density(neighbourhoods)) / options.noise_tolerance;
+      const std::size_t k = std::min({static_cast<std::size_t>(std::ceil(wanted)), options.max_k, available});
+      if (k > shared) run(k, true);
+      if (wanted > static_cast<double>(options.max_k) && options.max_k < available)
+        result.warnings.push_back("curvature: the noise (σ ≈ " + std::to_string(result.noise_sigma) +
+                                  ") calls for fits over " + std::to_string(static_cast<std::size_t>(wanted)) +
+                                  " neighbours; capped at max_k = " + std::to_string(options.max_k));
+    }
+  }
+  if (result.fit_neighbours < 5 && n > 0)
+    result.warnings.push_back("curvature: only " + std::to_string(result.fit_neighbours + 1) +
+                              " points per fit (6 needed); unseen curvature components are set to 0");
+  return result;
+}
+
+}  // namespace
+
+Curvature estimate_curvature(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
+                             const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree& tree,
+                             const CurvatureOptions& options) {
+  if (tree.size() != points.size())
+    throw Error("curvature: the kd-tree holds " + std::to_string(tree.size()) + " points but the cloud has " +
+                std::to_string(points.size()));
+  return estimate(points, normals, neighbourhoods, &tree, options);
+}
+
+Curvature estimate_curvature(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
+                             const neighbourhood::Neighbourhoods& neighbourhoods, const CurvatureOptions& options) {
+  return estimate(points, normals, neighbourhoods, nullptr, options);
+}
+
+}  // namespace pcsketch::differential

@@ -1,0 +1,78 @@
+#include "pcsketch/differential/normals.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <atomic>
+
+#include "differential/common.h"
+#include "neighbourhood/parallel_chunks.h"
+
+namespace pcsketch::differential {
+
+namespace {
+
+/// Eigenvalue ratio below which a direction counts as absent: float positions leave relative variances of about
+/// 1e-12 across a line, true surfaces are many orders above.
+constexpr double kDegenerateRatio = 1e-9;
+
+/// A unit vector perpendicular to `d` (unit), chosen deterministically.
+Vec3d perpendicular(const Vec3d& d) {
+  Eigen::Index axis;
+  d.cwiseAbs().minCoeff(&axis);
+  return d.cross(Vec3d::Unit(axis)).normalized();
+}
+
+}  // namespace
+
+NormalResult estimate_normals(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& neighbourhoods,
+                              const NormalOptions& options) {
+  const std::size_t n = points.size();
+  detail::check_neighbourhoods("normals", n, neighbourhoods);
+  const std::size_t k = detail::neighbours_used(options.k, neighbourhoods);
+  NormalResult result;
+  result.normals.resize(n);
+  result.surface_variation.resize(n);
+  std::atomic<std::size_t> degenerate{0};
+
+  pcsketch::detail::parallel_chunks(n, options.progress, "normals", [&](std::size_t begin, std::size_t end) {
+    std::size_t local_degenerate = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      // Covariance of the point and its neighbours, relative to the point (exact differences in double).
+      const Vec3d origin = points[i].cast<double>();
+      Vec3d sum = Vec3d::Zero();
+      Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+      const auto nb = neighbourhoods.indices.data() + i * neighbourhoods.k;
+      for (std::size_t m = 0; m < k; ++m) {
+        const Vec3d d = points[nb[m]].cast<double>() - origin;
+        sum += d;
+        outer.noalias() += d * d.transpose();
+      }
+      const double count = static_cast<double>(k + 1);
+      const Vec3d mean = sum / count;
+      const Eigen::Matrix3d covariance = outer / count - mean * mean.transpose();
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+      eigen.computeDirect(covariance);
+      const Vec3d lambda = eigen.eigenvalues().cwiseMax(0.0);  // ascending
+      const double total = lambda.sum();
+      Vec3d normal;
+      if (!(total > 0) || !eigen.eigenvectors().allFinite()) {
+        normal = Vec3d::UnitZ();  // all points identical: any direction is perpendicular to the data
+        ++local_degenerate;
+      } else if (lambda[1] <= kDegenerateRatio * lambda[2]) {
+        normal = perpendicular(eigen.eigenvectors().col(2));  // collinear
+        ++local_degenerate;
+      } else {
+        normal = eigen.eigenvectors().col(0).normalized();  // smallest variance: across the surface
+      }
+      result.normals[i] = normal.cast<float>();
+      result.surface_variation[i] = total > 0 ? static_cast<float>(lambda[0] / total) : 0.f;
+    }
+    degenerate += local_degenerate;
+  });
+  if (degenerate > 0)
+    result.warnings.push_back("normals: " + std::to_string(degenerate.load()) +
+                              " points have all neighbours identical or collinear; their normals are arbitrary");
+  return result;
+}
+
+}  // namespace pcsketch::differential

@@ -1,0 +1,31 @@
+#pragma once
+// A parallel per-index loop that reports progress between chunks (ProgressReporter is not thread-safe).
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstddef>
+
+#include "pcsketch/core/report.h"
+
+namespace pcsketch::detail {
+
+/// Calls body(begin, end) over [0, n) in parallel, in about 20 sequential rounds so that `progress` is called (and
+/// may cancel) between rounds. The body must write only to slots of its own range, which keeps results identical
+/// for any thread count.
+template <class Body>
+void parallel_chunks(std::size_t n, const ProgressFn& progress, std::string_view stage, const Body& body) {
+  const ProgressReporter report(progress, stage);
+  const std::size_t round = std::max<std::size_t>(n / 20 + 1, 4096);
+  report(0.0);
+  for (std::size_t begin = 0; begin < n; begin += round) {
+    const std::size_t end = std::min(n, begin + round);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+    report(static_cast<double>(end) / static_cast<double>(n));
+  }
+  if (n == 0) report(1.0);
+}
+
+}  // namespace pcsketch::detail
