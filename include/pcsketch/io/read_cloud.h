@@ -1,0 +1,57 @@
+#pragma once
+// Reading point clouds and meshes: one entry point, one dispatch table choosing the reader by the file's first bytes
+// (magic "ply", "OFF", a PCD header) and then by its extension (docs/io.md lists the formats).
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pcsketch/core/point_cloud.h"
+#include "pcsketch/core/report.h"
+
+namespace pcsketch::io {
+
+struct ReadOptions {
+  /// Recentre the cloud on a double origin (the bounding-box centre rounded to whole units) when it lies far from
+  /// the world origin (further than 8 bounding-box extents): float positions then keep sub-millimetre precision on
+  /// georeferenced scans with 6-digit UTM offsets. Off: origin = 0 and positions are the world coordinates as float.
+  bool recentre = true;
+  /// Keep the per-point normals of the file (nx ny nz). Off: the cloud has no normals, as a raw scan.
+  bool keep_normals = true;
+  /// Keep the per-point colours of the file (red green blue).
+  bool keep_colors = true;
+};
+
+/// A cloud as read, plus what the reader noticed.
+struct ReadResult {
+  PointCloud cloud;                           ///< #P finite points; source_index empty (file order)
+  std::string format;                         ///< reader and layout, e.g. "ply binary_little_endian", "xyz", "off"
+  Warnings warnings;                          ///< one line each, e.g. the count of dropped non-finite points
+  std::size_t dropped_non_finite = 0;         ///< points with a NaN or infinite coordinate, not in `cloud`
+  std::size_t points_in_file = 0;             ///< points the file holds, dropped ones included
+  std::vector<std::string> other_attributes;  ///< per-point properties/columns present in the file but not kept
+};
+
+/// Reads the points of a PLY, XYZ/PTS/TXT/CSV/ASC, PCD, OFF or OBJ file (the vertices of a mesh are its points).
+/// The file is mapped into memory once; header counts are checked against the file size before anything is
+/// allocated. Points with a NaN or infinite coordinate are dropped with one warning counting them.
+/// @throws pcsketch::Error naming the file and the line (text) or byte offset (binary) for an empty, truncated,
+///         malformed or unknown file, and when no finite point is left.
+ReadResult read_point_cloud(const std::string& path, const ReadOptions& options = {});
+
+/// As read_point_cloud, from bytes already in memory (fuzzing, tests). `name_hint` stands for the path: its
+/// extension helps choose the reader and it names the input in error messages.
+ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::string& name_hint,
+                                        const ReadOptions& options = {});
+
+/// Reads a triangle mesh from PLY (element "face", list property vertex_indices/vertex_index), OFF or OBJ.
+/// Polygons are triangulated as fans around their first vertex; faces with fewer than 3 vertices are ignored.
+/// Vertices are recentred as in read_point_cloud.
+/// @throws pcsketch::Error for a malformed file, a face index out of range, a non-finite vertex, or no faces.
+Mesh read_mesh(const std::string& path, const ReadOptions& options = {});
+
+/// As read_mesh, from bytes in memory; `name_hint` as in read_point_cloud_from_memory.
+Mesh read_mesh_from_memory(std::string_view bytes, const std::string& name_hint, const ReadOptions& options = {});
+
+}  // namespace pcsketch::io

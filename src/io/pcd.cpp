@@ -1,0 +1,245 @@
+// PCD reader (Point Cloud Library): DATA ascii, binary and binary_compressed (LZF), fields x y z, normal_x/y/z and
+// the packed rgb/rgba colour.
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "io/ply_types.h"
+#include "io/raw_cloud.h"
+#include "io/text_scan.h"
+
+namespace pcsketch::io::detail {
+namespace {
+
+struct Field {
+  std::string name;
+  std::size_t size = 4;
+  char type = 'F';
+  std::size_t count = 1;
+  std::size_t offset = 0;  ///< in a binary record (point-major layout)
+  PlyScalar scalar = PlyScalar::F32;
+};
+
+/// LZF decompression (liblzf's format, as PCL writes it) into exactly `out.size()` bytes; false on corrupt input.
+bool lzf_decompress(std::string_view in, std::vector<char>& out) {
+  std::size_t ip = 0, op = 0;
+  while (ip < in.size()) {
+    const unsigned ctrl = static_cast<unsigned char>(in[ip++]);
+    if (ctrl < 32) {  // a run of ctrl + 1 literal bytes
+      const std::size_t len = ctrl + 1;
+      if (len > in.size() - ip || len > out.size() - op) return false;
+      std::memcpy(out.data() + op, in.data() + ip, len);
+      ip += len;
+      op += len;
+      continue;
+    }
+    std::size_t len = ctrl >> 5;  // a back reference
+    if (len == 7) {
+      if (ip >= in.size()) return false;
+      len += static_cast<unsigned char>(in[ip++]);
+    }
+    if (ip >= in.size()) return false;
+    const std::size_t back = ((ctrl & 0x1fu) << 8) + static_cast<unsigned char>(in[ip++]) + 1;
+    len += 2;
+    if (back > op || len > out.size() - op) return false;
+    for (std::size_t k = 0; k < len; ++k, ++op) out[op] = out[op - back];  // may overlap: byte by byte
+  }
+  return op == out.size();
+}
+
+std::optional<PlyScalar> scalar_of(char type, std::size_t size) {
+  if (type == 'F')
+    return size == 4 ? std::optional(PlyScalar::F32) : size == 8 ? std::optional(PlyScalar::F64) : std::nullopt;
+  const bool u = type == 'U';
+  if (type != 'U' && type != 'I') return std::nullopt;
+  switch (size) {
+    case 1:
+      return u ? PlyScalar::U8 : PlyScalar::I8;
+    case 2:
+      return u ? PlyScalar::U16 : PlyScalar::I16;
+    case 4:
+      return u ? PlyScalar::U32 : PlyScalar::I32;
+    default:
+      return std::nullopt;
+  }
+}
+
+// rgb/rgba hold 0x00RRGGBB in the bits of a float (or a uint32).
+Rgb8 unpack_rgb(double value, PlyScalar type) {
+  std::uint32_t bits = 0;
+  if (type == PlyScalar::F32) {
+    bits = std::bit_cast<std::uint32_t>(static_cast<float>(value));
+  } else if (value >= 0 && value <= 4294967295.0) {
+    bits = static_cast<std::uint32_t>(value);
+  }
+  return {static_cast<std::uint8_t>(bits >> 16), static_cast<std::uint8_t>(bits >> 8), static_cast<std::uint8_t>(bits)};
+}
+
+}  // namespace
+
+RawCloud parse_pcd(const Source& src, Want) {
+  LineReader lines(src.bytes);
+  std::string_view line, keyword, token;
+  std::vector<Field> fields;
+  std::uint64_t width = 0, height = 1, points = 0;
+  bool have_points = false;
+  std::string data;
+  while (data.empty()) {
+    if (!lines.next(line)) src.fail_at_line(lines.line() + 1, "PCD: header has no DATA line");
+    if (line.starts_with("#")) continue;
+    Tokens tokens(line, false);
+    if (!tokens.next(keyword)) continue;
+    const auto fail = [&](const std::string& m) { src.fail_at_line(lines.line(), "PCD: " + m); };
+    std::vector<std::string_view> values;
+    while (tokens.next(token)) values.push_back(token);
+    const auto per_field = [&](auto&& set) {
+      if (values.size() != fields.size()) fail(std::string(keyword) + " needs one value per field");
+      for (std::size_t i = 0; i < values.size(); ++i) set(fields[i], values[i]);
+    };
+    const auto one_uint = [&](std::uint64_t& out) {
+      if (values.size() != 1 || !parse_uint(values[0], out)) fail(std::string(keyword) + " needs one integer");
+    };
+    if (keyword == "VERSION" || keyword == "VIEWPOINT") {
+      continue;
+    } else if (keyword == "FIELDS") {
+      if (values.empty()) fail("FIELDS is empty");
+      for (const std::string_view v : values) fields.push_back(Field{std::string(v)});
+    } else if (keyword == "SIZE" || keyword == "COUNT") {
+      per_field([&](Field& f, std::string_view v) {
+        std::uint64_t x = 0;
+        if (!parse_uint(v, x) || x == 0 || x > 1024)
+          fail("invalid " + std::string(keyword) + " \"" + std::string(v) + "\"");
+        (keyword == "SIZE" ? f.size : f.count) = x;
+      });
+    } else if (keyword == "TYPE") {
+      per_field([&](Field& f, std::string_view v) {
+        if (v.size() != 1) fail("invalid TYPE \"" + std::string(v) + "\"");
+        f.type = v[0];
+      });
+    } else if (keyword == "WIDTH") {
+      one_uint(width);
+    } else if (keyword == "HEIGHT") {
+      one_uint(height);
+    } else if (keyword == "POINTS") {
+      one_uint(points);
+      have_points = true;
+    } else if (keyword == "DATA") {
+      if (values.size() != 1) fail("DATA needs ascii, binary or binary_compressed");
+      data = values[0];
+      if (data != "ascii" && data != "binary" && data != "binary_compressed") fail("unknown DATA \"" + data + "\"");
+    } else {
+      fail("unknown header keyword \"" + std::string(keyword) + "\"");
+    }
+  }
+  const std::uint64_t header_line = lines.line();
+  if (fields.empty()) src.fail_at_line(header_line, "PCD: header has no FIELDS line");
+  if (!have_points) {
+    if (height != 0 && width > 0xffffffffull / height)
+      src.fail_at_line(header_line, "PCD: WIDTH x HEIGHT is too large");
+    points = width * height;
+  }
+
+  std::size_t record = 0;
+  for (Field& f : fields) {
+    const auto s = scalar_of(f.type, f.size);
+    if (!s) src.fail_at_line(header_line, "PCD: field \"" + f.name + "\" has unsupported TYPE/SIZE");
+    f.scalar = *s;
+    f.offset = record;
+    record += f.size * f.count;
+  }
+  if (record > (1u << 20)) src.fail_at_line(header_line, "PCD: a point record of more than 1 MiB");
+  const auto find = [&](std::initializer_list<std::string_view> names) -> const Field* {
+    for (const Field& f : fields)
+      if (std::find(names.begin(), names.end(), f.name) != names.end()) return &f;
+    return nullptr;
+  };
+  const std::array<const Field*, 3> xyz{find({"x"}), find({"y"}), find({"z"})};
+  const std::array<const Field*, 3> nrm{find({"normal_x", "nx"}), find({"normal_y", "ny"}), find({"normal_z", "nz"})};
+  const Field* rgb = find({"rgb", "rgba"});
+  if (!xyz[0] || !xyz[1] || !xyz[2]) src.fail_at_line(header_line, "PCD: FIELDS lacks one of x, y, z");
+  const bool has_normals = nrm[0] && nrm[1] && nrm[2];
+
+  RawCloud raw;
+  raw.format = "pcd " + data;
+  for (const Field& f : fields)
+    if (std::find(xyz.begin(), xyz.end(), &f) == xyz.end() &&
+        (!has_normals || std::find(nrm.begin(), nrm.end(), &f) == nrm.end()) && &f != rgb)
+      raw.other_attributes.push_back(f.name);
+
+  // Check the point count against the bytes left before allocating anything sized by it.
+  const std::size_t body = lines.consumed(src.bytes);
+  const std::uint64_t left = src.bytes.size() - body;
+  const std::uint64_t min_bytes = data == "ascii" ? 2 * fields.size() : data == "binary" ? record : 1;
+  const std::uint64_t budget = left + (data == "ascii" ? 1 : 0);  // the last ascii value may end the file
+  if (points > 0xffffffffull || points > budget / min_bytes)
+    src.fail_at_byte(body, "PCD: header claims " + std::to_string(points) + " points, but only " +
+                               std::to_string(left) + " bytes follow the header (truncated file?)");
+  raw.positions.resize(points);
+  if (has_normals) raw.normals.resize(points);
+  if (rgb) raw.colors.resize(points);
+
+  const auto store = [&](std::size_t i, auto&& value_of) {
+    raw.positions[i] = Vec3d(value_of(*xyz[0]), value_of(*xyz[1]), value_of(*xyz[2]));
+    if (has_normals)
+      raw.normals[i] = Vec3f(float(value_of(*nrm[0])), float(value_of(*nrm[1])), float(value_of(*nrm[2])));
+    if (rgb) raw.colors[i] = unpack_rgb(value_of(*rgb), rgb->scalar);
+  };
+  if (data == "ascii") {
+    // The first value of each field on a line, by field order.
+    std::vector<std::size_t> first_token(fields.size());
+    std::size_t tokens_per_line = 0;
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      first_token[k] = tokens_per_line;
+      tokens_per_line += fields[k].count;
+    }
+    std::vector<double> values(tokens_per_line);
+    for (std::size_t i = 0; i < points; ++i) {
+      do {
+        if (!lines.next(line))
+          src.fail_at_line(lines.line() + 1,
+                           "PCD: file ends after " + std::to_string(i) + " of " + std::to_string(points) + " points");
+      } while (line.find_first_not_of(" \t\r") == std::string_view::npos);
+      Tokens tokens(line, false);
+      for (double& v : values) {
+        if (!tokens.next(token))
+          src.fail_at_line(lines.line(), "PCD: too few values (need " + std::to_string(tokens_per_line) + ")");
+        if (!parse_double(token, v))
+          src.fail_at_line(lines.line(), "PCD: non-numeric value \"" + std::string(token.substr(0, 32)) + "\"");
+      }
+      store(i, [&](const Field& f) { return values[first_token[&f - fields.data()]]; });
+    }
+    return raw;
+  }
+  // Binary: point-major records. Compressed: field-major arrays (each field's values for every point in turn).
+  std::string_view bytes = src.bytes.substr(body);
+  std::vector<char> unpacked;
+  if (data == "binary_compressed") {
+    if (bytes.size() < 8) src.fail_at_byte(body, "PCD: compressed body lacks its 8-byte size header");
+    const auto compressed = load_swapped<std::uint32_t>(bytes.data(), false);
+    const auto size = load_swapped<std::uint32_t>(bytes.data() + 4, false);
+    if (compressed > bytes.size() - 8)
+      src.fail_at_byte(body, "PCD: compressed size " + std::to_string(compressed) + " exceeds the file (truncated?)");
+    if (size != points * record)
+      src.fail_at_byte(body + 4, "PCD: uncompressed size " + std::to_string(size) + " is not POINTS x record size " +
+                                     std::to_string(points * record));
+    // LZF expands at most 88 times (264 bytes from a 3-byte back reference): bounds the allocation.
+    if (size > 88ull * compressed + 32) src.fail_at_byte(body + 4, "PCD: uncompressed size impossible for LZF");
+    unpacked.resize(size);
+    if (!lzf_decompress(bytes.substr(8, compressed), unpacked))
+      src.fail_at_byte(body + 8, "PCD: corrupt LZF-compressed body");
+    bytes = std::string_view(unpacked.data(), unpacked.size());
+    for (std::size_t i = 0; i < points; ++i)
+      store(i, [&](const Field& f) {
+        return load_ply_scalar(f.scalar, bytes.data() + f.offset * points + i * f.size * f.count, false);
+      });
+    return raw;
+  }
+  for (std::size_t i = 0; i < points; ++i)
+    store(i, [&](const Field& f) { return load_ply_scalar(f.scalar, bytes.data() + i * record + f.offset, false); });
+  return raw;
+}
+
+}  // namespace pcsketch::io::detail

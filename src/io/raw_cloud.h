@@ -1,0 +1,53 @@
+#pragma once
+// What every format reader produces before the common finishing step (drop non-finite points, recentre).
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pcsketch/core/error.h"
+#include "pcsketch/io/read_cloud.h"
+
+namespace pcsketch::io::detail {
+
+/// The bytes of one input and the name that stands for it in messages.
+struct Source {
+  std::string_view bytes;
+  const std::string& path;
+
+  [[noreturn]] void fail_at_byte(std::size_t offset, const std::string& message) const {
+    throw Error(FileLoc{path, {}, offset}, message);
+  }
+  [[noreturn]] void fail_at_line(std::uint64_t line, const std::string& message) const {
+    throw Error(FileLoc{path, line, {}}, message);
+  }
+  [[noreturn]] void fail(const std::string& message) const { throw Error(FileLoc{path, {}, {}}, message); }
+};
+
+/// Coordinates in double as read from the file, before recentring.
+struct RawCloud {
+  std::vector<Vec3d> positions;
+  std::vector<Vec3f> normals;                       ///< empty or #P
+  std::vector<Rgb8> colors;                         ///< empty or #P
+  std::vector<std::array<std::uint32_t, 3>> faces;  ///< filled only when a mesh is asked for
+  std::vector<std::string> other_attributes;
+  std::string format;
+};
+
+/// What a reader is asked for: the points only, or the faces too.
+enum class Want : std::uint8_t { Points, Mesh };
+
+/// Format readers: one per file, all throwing pcsketch::Error with the place of the problem.
+RawCloud parse_ply(const Source& source, Want want);
+RawCloud parse_xyz(const Source& source, Want want);
+RawCloud parse_pcd(const Source& source, Want want);
+RawCloud parse_off(const Source& source, Want want);
+RawCloud parse_obj(const Source& source, Want want);
+
+/// Appends the triangles of a polygon as a fan around its first corner (nothing for fewer than 3 corners).
+void add_fan(std::span<const std::uint32_t> polygon, std::vector<std::array<std::uint32_t, 3>>& faces);
+
+}  // namespace pcsketch::io::detail

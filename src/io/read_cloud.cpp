@@ -1,0 +1,210 @@
+#include "pcsketch/io/read_cloud.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+
+#include "io/mapped_file.h"
+#include "io/raw_cloud.h"
+
+namespace pcsketch::io {
+namespace {
+
+using detail::RawCloud;
+using detail::Source;
+using detail::Want;
+
+bool sniff_ply(std::string_view head) { return head.starts_with("ply\n") || head.starts_with("ply\r\n"); }
+
+// "OFF", and its variants "COFF", "NOFF", "STOFF", … : the first token ends in OFF.
+bool sniff_off(std::string_view head) {
+  std::size_t i = 0;
+  while (i < head.size() && i < 8 && std::isalpha(static_cast<unsigned char>(head[i]))) ++i;
+  if (i < 3 || head.substr(i - 3, 3) != "OFF") return false;
+  return i == head.size() || std::isspace(static_cast<unsigned char>(head[i]));
+}
+
+// PCD: '#' comment lines, then a VERSION or FIELDS line.
+bool sniff_pcd(std::string_view head) {
+  while (head.starts_with("#")) {
+    const std::size_t eol = head.find('\n');
+    if (eol == std::string_view::npos) return false;
+    head.remove_prefix(eol + 1);
+  }
+  return head.starts_with("VERSION") || head.starts_with("FIELDS");
+}
+
+struct Reader {
+  std::string_view name;
+  std::array<std::string_view, 5> extensions;  ///< lower case, with the dot; unused entries empty
+  bool (*sniff)(std::string_view head);        ///< nullptr: a text format without magic, chosen by extension
+  RawCloud (*parse)(const Source&, Want);
+  bool has_faces;
+};
+
+// The dispatch table: magic first (a PLY named .xyz is still read as PLY), then extension.
+constexpr std::array kReaders{
+    Reader{"PLY", {".ply"}, sniff_ply, detail::parse_ply, true},
+    Reader{"OFF", {".off"}, sniff_off, detail::parse_off, true},
+    Reader{"PCD", {".pcd"}, sniff_pcd, detail::parse_pcd, false},
+    Reader{"OBJ", {".obj"}, nullptr, detail::parse_obj, true},
+    Reader{"XYZ", {".xyz", ".pts", ".txt", ".csv", ".asc"}, nullptr, detail::parse_xyz, false},
+};
+
+std::string printable_head(std::string_view bytes) {
+  std::string out;
+  for (const char c : bytes.substr(0, 8)) {
+    if (std::isprint(static_cast<unsigned char>(c))) {
+      out += c;
+    } else {
+      static constexpr char kHex[] = "0123456789abcdef";
+      const auto u = static_cast<unsigned char>(c);
+      out += "\\x";
+      out += kHex[u >> 4];
+      out += kHex[u & 15];
+    }
+  }
+  return out;
+}
+
+const Reader& choose_reader(const Source& source) {
+  if (source.bytes.empty()) source.fail("empty file");
+  for (const Reader& r : kReaders)
+    if (r.sniff != nullptr && r.sniff(source.bytes)) return r;
+  std::string ext = std::filesystem::path(source.path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](char c) { return static_cast<char>(std::tolower(c)); });
+  for (const Reader& r : kReaders) {
+    if (ext.empty() || std::find(r.extensions.begin(), r.extensions.end(), ext) == r.extensions.end()) continue;
+    if (r.sniff != nullptr)
+      source.fail_at_byte(
+          0, std::string(r.name) + ": wrong magic: the file starts with \"" + printable_head(source.bytes) + "\"");
+    return r;
+  }
+  source.fail("unknown format: extension \"" + ext + "\" is none of .ply .off .pcd .obj .xyz .pts .txt .csv .asc" +
+              " and the first bytes \"" + printable_head(source.bytes) + "\" are no known magic");
+}
+
+// Recentre far-away clouds on a whole-unit origin; keep origin 0 for clouds around the world origin, where float
+// positions lose nothing worth keeping (at most 4 bits against a centred cloud).
+Vec3d choose_origin(const std::vector<Vec3d>& positions, const ReadOptions& options) {
+  if (!options.recentre || positions.empty()) return Vec3d::Zero();
+  Vec3d lo = positions.front(), hi = positions.front();
+  for (const Vec3d& p : positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec3d centre = 0.5 * (lo + hi);
+  const double extent = (hi - lo).maxCoeff();
+  if (centre.cwiseAbs().maxCoeff() <= 8.0 * extent) return Vec3d::Zero();
+  return centre.array().round().matrix();
+}
+
+std::vector<Vec3f> relative(const std::vector<Vec3d>& positions, const Vec3d& origin) {
+  std::vector<Vec3f> out(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) out[i] = (positions[i] - origin).cast<float>();
+  return out;
+}
+
+ReadResult finish_points(RawCloud&& raw, const Source& source, const ReadOptions& options) {
+  ReadResult result;
+  result.format = std::move(raw.format);
+  result.other_attributes = std::move(raw.other_attributes);
+  result.points_in_file = raw.positions.size();
+  if (!options.keep_normals) raw.normals.clear();
+  if (!options.keep_colors) raw.colors.clear();
+
+  // Compact finite points in place, keeping the per-point arrays aligned.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < raw.positions.size(); ++i) {
+    if (!raw.positions[i].allFinite()) continue;
+    raw.positions[kept] = raw.positions[i];
+    if (!raw.normals.empty()) raw.normals[kept] = raw.normals[i];
+    if (!raw.colors.empty()) raw.colors[kept] = raw.colors[i];
+    ++kept;
+  }
+  result.dropped_non_finite = raw.positions.size() - kept;
+  if (kept == 0) {
+    if (raw.positions.empty()) source.fail(result.format + ": the file holds no points");
+    source.fail(result.format + ": all " + std::to_string(raw.positions.size()) +
+                " points have a NaN or infinite coordinate");
+  }
+  if (result.dropped_non_finite > 0)
+    result.warnings.push_back(source.path + ": dropped " + std::to_string(result.dropped_non_finite) + " of " +
+                              std::to_string(raw.positions.size()) + " points with a NaN or infinite coordinate");
+  raw.positions.resize(kept);
+  if (!raw.normals.empty()) raw.normals.resize(kept);
+  if (!raw.colors.empty()) raw.colors.resize(kept);
+
+  // Normals must be unit length; a file with unusable ones is treated as having none.
+  std::size_t bad_normals = 0;
+  for (Vec3f& n : raw.normals) {
+    const float len = n.norm();
+    if (std::isfinite(len) && len > 0.f) {
+      n /= len;
+    } else {
+      ++bad_normals;
+    }
+  }
+  if (bad_normals > 0) {
+    result.warnings.push_back(source.path + ": " + std::to_string(bad_normals) +
+                              " normals are zero or not finite; normals ignored");
+    raw.normals.clear();
+  }
+
+  PointCloud& cloud = result.cloud;
+  cloud.origin = choose_origin(raw.positions, options);
+  cloud.positions = relative(raw.positions, cloud.origin);
+  cloud.normals = std::move(raw.normals);
+  cloud.colors = std::move(raw.colors);
+  return result;
+}
+
+ReadResult read_points(const Source& source, const ReadOptions& options) {
+  return finish_points(choose_reader(source).parse(source, Want::Points), source, options);
+}
+
+Mesh read_faces(const Source& source, const ReadOptions& options) {
+  const Reader& reader = choose_reader(source);
+  if (!reader.has_faces)
+    source.fail(std::string(reader.name) + ": the format holds no faces; a mesh must be PLY, OFF or OBJ");
+  RawCloud raw = reader.parse(source, Want::Mesh);
+  for (std::size_t i = 0; i < raw.positions.size(); ++i)
+    if (!raw.positions[i].allFinite())
+      source.fail(raw.format + ": vertex " + std::to_string(i) + " has a NaN or infinite coordinate");
+  if (raw.faces.empty()) source.fail(raw.format + ": the file holds no faces with 3 or more vertices");
+  Mesh mesh;
+  mesh.origin = choose_origin(raw.positions, options);
+  mesh.vertices = relative(raw.positions, mesh.origin);
+  mesh.faces = std::move(raw.faces);
+  return mesh;
+}
+
+}  // namespace
+
+ReadResult read_point_cloud(const std::string& path, const ReadOptions& options) {
+  const detail::MappedFile file(path);
+  return read_points(Source{file.bytes(), path}, options);
+}
+
+ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::string& name_hint,
+                                        const ReadOptions& options) {
+  return read_points(Source{bytes, name_hint}, options);
+}
+
+Mesh read_mesh(const std::string& path, const ReadOptions& options) {
+  const detail::MappedFile file(path);
+  return read_faces(Source{file.bytes(), path}, options);
+}
+
+Mesh read_mesh_from_memory(std::string_view bytes, const std::string& name_hint, const ReadOptions& options) {
+  return read_faces(Source{bytes, name_hint}, options);
+}
+
+namespace detail {
+void add_fan(std::span<const std::uint32_t> polygon, std::vector<std::array<std::uint32_t, 3>>& faces) {
+  for (std::size_t i = 2; i < polygon.size(); ++i) faces.push_back({polygon[0], polygon[i - 1], polygon[i]});
+}
+}  // namespace detail
+
+}  // namespace pcsketch::io

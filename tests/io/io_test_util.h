@@ -1,0 +1,122 @@
+#pragma once
+// Helpers for the reader tests: a per-test temporary directory and a PLY encoder independent of the library's writer
+// (so a reader bug and a writer bug cannot cancel out).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace pcsketch::test {
+
+/// A fresh directory per test, removed afterwards.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() / ("pcsketch_io_" + std::string(info->test_suite_name()) + "_" +
+                                                      info->name() + "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() { std::filesystem::remove_all(path_); }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  /// Writes `bytes` to `name` and returns its path.
+  std::string write(const std::string& name, const std::string& bytes) const {
+    std::ofstream(file(name), std::ios::binary) << bytes;
+    return file(name);
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+enum class Layout { Ascii, BinaryLE, BinaryBE };
+inline const char* layout_name(Layout l) {
+  return l == Layout::Ascii ? "ascii" : l == Layout::BinaryLE ? "binary_little_endian" : "binary_big_endian";
+}
+
+/// One PLY property: a scalar of `type`, or a list with `count_type` counts.
+struct PlyProp {
+  std::string type;
+  std::string name;
+  std::string count_type;  ///< empty: scalar
+};
+/// One element; each row holds the values of every property in order, a list as its count then its items.
+struct PlyElem {
+  std::string name;
+  std::vector<PlyProp> props;
+  std::vector<std::vector<double>> rows;
+};
+
+inline std::size_t type_size(const std::string& t) {
+  if (t == "char" || t == "int8" || t == "uchar" || t == "uint8") return 1;
+  if (t == "short" || t == "int16" || t == "ushort" || t == "uint16") return 2;
+  if (t == "double" || t == "float64") return 8;
+  return 4;
+}
+
+template <class T>
+void append_binary(std::string& out, T v, bool big) {
+  std::array<char, sizeof(T)> b;
+  std::memcpy(b.data(), &v, sizeof(T));
+  if (big) std::reverse(b.begin(), b.end());
+  out.append(b.data(), b.size());
+}
+
+inline void encode(std::string& out, const std::string& t, double v, Layout layout) {
+  if (layout == Layout::Ascii) {
+    std::array<char, 40> text;
+    out.append(text.data(), std::to_chars(text.data(), text.data() + text.size(), v).ptr);
+    out += ' ';
+    return;
+  }
+  const bool big = layout == Layout::BinaryBE;
+  if (t == "char" || t == "int8") return append_binary(out, static_cast<std::int8_t>(v), big);
+  if (t == "uchar" || t == "uint8") return append_binary(out, static_cast<std::uint8_t>(v), big);
+  if (t == "short" || t == "int16") return append_binary(out, static_cast<std::int16_t>(v), big);
+  if (t == "ushort" || t == "uint16") return append_binary(out, static_cast<std::uint16_t>(v), big);
+  if (t == "int" || t == "int32") return append_binary(out, static_cast<std::int32_t>(v), big);
+  if (t == "uint" || t == "uint32") return append_binary(out, static_cast<std::uint32_t>(v), big);
+  if (t == "float" || t == "float32") return append_binary(out, static_cast<float>(v), big);
+  append_binary(out, v, big);
+}
+
+/// A whole PLY file. `declared_counts` overrides the element counts written in the header (malformed files).
+inline std::string make_ply(const std::vector<PlyElem>& elements, Layout layout,
+                            const std::vector<std::uint64_t>& declared_counts = {}) {
+  std::string out = std::string("ply\nformat ") + layout_name(layout) + " 1.0\ncomment made by io_test_util.h\n";
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const std::uint64_t count = e < declared_counts.size() ? declared_counts[e] : elements[e].rows.size();
+    out += "element " + elements[e].name + " " + std::to_string(count) + "\n";
+    for (const PlyProp& p : elements[e].props)
+      out += p.count_type.empty() ? "property " + p.type + " " + p.name + "\n"
+                                  : "property list " + p.count_type + " " + p.type + " " + p.name + "\n";
+  }
+  out += "obj_info generated\nend_header\n";
+  for (const PlyElem& e : elements) {
+    for (const std::vector<double>& row : e.rows) {
+      std::size_t k = 0;
+      for (const PlyProp& p : e.props) {
+        if (p.count_type.empty()) {
+          encode(out, p.type, row.at(k++), layout);
+          continue;
+        }
+        const auto n = static_cast<std::size_t>(row.at(k));
+        encode(out, p.count_type, row.at(k++), layout);
+        for (std::size_t i = 0; i < n; ++i) encode(out, p.type, row.at(k++), layout);
+      }
+      if (layout == Layout::Ascii) out.back() = '\n';
+    }
+  }
+  return out;
+}
+
+}  // namespace pcsketch::test
