@@ -1,0 +1,118 @@
+#pragma once
+// Contours of one view (paper §IV.B): the outline of the projected cloud (boundary points of the 2D point set, traced
+// by direction-guided growth) and, beyond the paper, interior occluding contours where the surface turns away from
+// the viewer inside the outline (an ear in front of the head, the inner rim of a torus seen from the side).
+
+#include <cstdint>
+#include <nlohmann/json_fwd.hpp>
+#include <vector>
+
+#include "pcsketch/core/point_cloud.h"
+#include "pcsketch/core/polyline.h"
+#include "pcsketch/neighbourhood/neighbourhoods.h"
+#include "pcsketch/view/camera.h"
+
+namespace pcsketch::view {
+
+/// How the outline's boundary points are chained (docs/views.md compares them).
+enum class OutlineConnection : std::uint8_t {
+  /// The paper's rule: the nearest unused boundary point ahead whose distance to the direction line is below z_max.
+  DirectionGuided,
+  /// Default: among the unused boundary points within the trace radius and the turn limit, the one furthest toward
+  /// the empty side (gift wrapping). Interference points lie inside the outline, so they are never taken: no
+  /// zig-zags, and the line follows the outermost points (within a pixel of the true silhouette).
+  Outermost,
+};
+
+/// Options of contour extraction. Lengths marked "h_px" are in units of the projected spacing: the mean spacing h
+/// seen at the point's depth, in pixels (orthographic: h · camera.scale).
+struct ContourOptions {
+  // --- contour points extraction (paper: boundary points of the projected set) ---
+  /// 2D neighbourhood radius r, in units of h_px. The projection holds at least one layer (open scan seen face-on:
+  /// about 1/h² points per unit area), so r = 3 gives about 14 neighbours there, enough for a stable angular gap.
+  float radius_factor = 3.0f;
+  /// Paper's k: at most the k nearest of the neighbours within r are used (bounds the cost in dense projections).
+  std::size_t k = 32;
+  /// A point is a boundary point when the largest angle between consecutive neighbour directions exceeds this, in
+  /// degrees. A point on a straight outline sees 180°; 120° keeps the band of boundary points within r/2 of the
+  /// outline and rarely fires inside (the largest gap among ~14 random directions is ~80°).
+  float gap_threshold_deg = 120.0f;
+  /// Paper: also a boundary point when one of the four quadrants of the (u, v) frame at the point is empty. Off by
+  /// default: that test depends on the image axes and marks points up to 0.7 r inside a straight outline.
+  bool quadrant_test = false;
+  /// Beyond the paper: a candidate is kept only if the cone of ±confirm_half_angle_deg around its empty direction
+  /// holds no point between r and confirm_factor · r. Outside a real outline the empty region goes on; a hole of
+  /// the random sampling inside the outline (they reach about r) is closed beyond it. 1 disables the check.
+  float confirm_factor = 2.0f;
+  /// Half-angle of the confirmation cone, degrees. Narrow: concave notches down to about r wide keep their outline.
+  float confirm_half_angle_deg = 20.0f;
+
+  // --- contour connection (paper: direction-guided growth) ---
+  OutlineConnection connection = OutlineConnection::Outermost;
+  /// Radius within which the next point of a line is searched, in units of h_px (paper: the neighbourhood of k).
+  float trace_radius_factor = 3.0f;
+  /// Paper's z_max: largest distance of the next point from the direction line, in units of h_px (DirectionGuided,
+  /// and the interior tracing where it is in units of h).
+  float z_max_factor = 1.0f;
+  /// Largest turn between consecutive steps, degrees; rejects backtracking (the spikes of interference points).
+  float max_turn_deg = 120.0f;
+  /// Unused boundary points within this distance beside or behind a step are removed ("used points removed"), in
+  /// units of h_px: the band of boundary points (r/2 wide) must not seed a second, parallel line.
+  float absorb_factor = 1.5f;
+  /// The direction n_p = p_front − p is taken over this many previous steps: smooths the heading on noisy bands.
+  std::size_t heading_steps = 3;
+  /// Lines shorter than this (units of h, measured in 3D for interior contours and in h_px for the outline) are
+  /// dropped: isolated boundary points inside the outline (sparse spots) make short fragments.
+  float min_length_factor = 8.0f;
+
+  // --- interior contours (beyond the paper) ---
+  /// Add occluding contours where the normal turns from facing the viewer to facing away (n·v changes sign between
+  /// neighbours), located at the zero crossing. Needs oriented normals and neighbourhoods.
+  bool interior = true;
+  /// Neighbours examined for a sign change (the nearest of the k-NN list): a wider ring blurs the zero crossing.
+  std::size_t interior_neighbours = 8;
+  /// Rim samples within this 3D distance of an outline vertex belong to the outline already, in units of h.
+  float interior_dedupe_factor = 3.0f;
+  /// 3D search radius when chaining rim samples, in units of h.
+  float interior_trace_radius_factor = 3.0f;
+
+  nlohmann::json to_json() const;
+};
+
+/// The contour points of one view (the "contour points extraction" step).
+struct ContourPoints {
+  std::vector<Vec3f> projected;        ///< #P: (u, v, depth) of every point (camera.project)
+  std::vector<float> spacing_px;       ///< #P: projected spacing h_px at each point's depth, pixels
+  std::vector<std::uint32_t> boundary; ///< #B: indices of the outline's boundary points, ascending
+  std::vector<Vec2f> outward;          ///< #B: unit image direction of each boundary point's largest empty gap
+  std::vector<Vec3f> rim;              ///< #R: interior rim samples (zero crossings of n·v), relative coordinates
+  std::vector<std::uint32_t> rim_point;  ///< #R: the front-facing cloud point each rim sample was made from
+};
+
+/// Projects the cloud and finds the outline's boundary points (paper §IV.B) and, when `options.interior`, the rim
+/// samples of interior contours.
+/// @param positions #P relative positions
+/// @param normals #P oriented unit normals (only read when options.interior; may then not be empty)
+/// @param neighbourhoods the 3D k-NN lists of the cloud (only read when options.interior)
+/// @param spacing mean spacing h, model units (> 0)
+/// @throws pcsketch::Error for a non-positive spacing or missing normals/neighbourhoods when interior is on.
+ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
+                                  const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
+                                  const Camera& camera, const ContourOptions& options = {});
+
+/// The contour lines of one view, all of kind Contour.
+struct ContourLines {
+  /// Outline of the projection: vertices are cloud points (point_index set), closed when the outline closes. Seen
+  /// by construction: nothing projects beyond the outline of everything.
+  std::vector<Polyline> outline;
+  /// Interior occluding contours: vertices are rim samples, point_index the front-facing point each came from.
+  /// Partly hidden in general (the far rim of a torus hole); visibility decides.
+  std::vector<Polyline> interior;
+};
+
+/// Chains the contour points into polylines (the "contour connection" step): the outline first, then the interior
+/// contours not already covered by it. Deterministic.
+ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec3f>& positions, float spacing,
+                              const ContourOptions& options = {});
+
+}  // namespace pcsketch::view

@@ -1,0 +1,70 @@
+#pragma once
+// Visibility of lines in one view (paper §IV.B, "judge the visible of the ridge-valley lines by using ray tracing"):
+// every vertex casts a ray toward the viewer through the points as oriented discs (SurfaceScene); lines are split
+// into visible and hidden runs, hidden runs kept in the data.
+
+#include <cstdint>
+#include <nlohmann/json_fwd.hpp>
+#include <vector>
+
+#include "pcsketch/core/polyline.h"
+#include "pcsketch/view/camera.h"
+#include "pcsketch/view/surface_scene.h"
+
+namespace pcsketch::view {
+
+/// How the renderer draws hidden runs (`--hidden-lines`): not at all (default), or thin and dashed, the
+/// technical-illustration convention. Visibility itself always keeps hidden runs in the data.
+enum class HiddenLineStyle : std::uint8_t { Omit, Dashed };
+
+struct VisibilityOptions {
+  /// Rays start this far from the vertex, in units of h (Embree ignores hits before t_near). A ray from a contour
+  /// point grazes the surface and crosses its neighbours' discs within about 2 disc radii; 3h skips them, so thin
+  /// parts (an ear, a sheet thinner than 3h) do not hide themselves. Surfaces nearer than that in front of a line
+  /// are missed: the price of the rule.
+  float self_offset_factor = 3.0f;
+  /// Per-vertex flags are smoothed by a majority vote over this many consecutive vertices (odd; 1 = off): a single
+  /// ray slipping through a gap between discs must not cut a hidden line.
+  std::size_t smoothing_window = 3;
+  /// Where visibility changes along a segment, the change point is found by this many bisection steps (extra rays),
+  /// so a hidden arc ends where the occluder's silhouette crosses it, not at the nearest vertex.
+  int transition_refinement = 6;
+
+  nlohmann::json to_json() const;
+};
+
+/// A run of one line with constant visibility. Consecutive runs share their end points.
+struct LineRun {
+  bool visible = true;
+  std::vector<Vec3f> points;     ///< 3D, relative coordinates
+  std::vector<Vec3f> projected;  ///< (u, v, depth) of each point
+  /// Position of each point along the line in vertex units: vertex i is i, a split point on the segment i → i+1
+  /// is i + fraction; on a closed line the closing segment is n−1 → n (n meaning vertex 0 again). Lets the renderer
+  /// interpolate per-vertex attributes (curvature, thickness).
+  std::vector<float> param;
+};
+
+/// A line as seen in one view.
+struct ViewLine {
+  Polyline line;                      ///< the 3D line (kind, points, per-vertex data, closed)
+  std::vector<Vec3f> projected;       ///< #V: (u, v, depth)
+  std::vector<std::uint8_t> visible;  ///< #V: 1 when the vertex is seen (after smoothing)
+  /// #S segments (#V − 1, or #V when closed): where along the segment visibility changes (fraction in (0, 1)),
+  /// only meaningful where the flags of its end points differ.
+  std::vector<float> split;
+  std::vector<LineRun> runs;          ///< the line cut into runs of constant visibility, in order
+};
+
+/// Visibility of each line's vertices, seen through `camera`.
+/// @param lines polylines in the cloud's relative coordinates (contours, ridges, valleys)
+/// @param scene the cloud as oriented discs (build once per cloud, shared by every view)
+/// @param spacing the cloud's mean spacing h (model units) the offsets are multiples of
+/// @return one ViewLine per input line, same order. Vertices behind a perspective eye are hidden.
+/// @throws pcsketch::Error for a non-positive spacing or an even smoothing window.
+std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const SurfaceScene& scene,
+                                      const Camera& camera, float spacing, const VisibilityOptions& options = {});
+
+/// A line known to be seen everywhere (the outline): every vertex visible, one run.
+ViewLine seen_line(const Polyline& line, const Camera& camera);
+
+}  // namespace pcsketch::view

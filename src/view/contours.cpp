@@ -1,0 +1,472 @@
+#include "pcsketch/view/contours.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <numeric>
+#include <span>
+
+#include "pcsketch/core/error.h"
+#include "view/point_grid.h"
+
+namespace pcsketch::view {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+constexpr float kDegToRad = kPi / 180.f;
+
+/// Largest angular gap between the directions `dirs` (unit not required): its size in radians and the unit
+/// direction of its bisector. Fewer than two directions: a full (or one-sided) gap.
+std::pair<float, Vec2f> largest_gap(std::vector<float>& angles, std::span<const Vec2f> dirs) {
+  if (dirs.empty()) return {2 * kPi, Vec2f(-1.f, 0.f)};
+  angles.resize(dirs.size());
+  for (std::size_t i = 0; i < dirs.size(); ++i) angles[i] = std::atan2(dirs[i].y(), dirs[i].x());
+  std::sort(angles.begin(), angles.end());
+  float best = angles.front() + 2 * kPi - angles.back();  // the gap across ±π
+  float start = angles.back();
+  for (std::size_t i = 1; i < angles.size(); ++i) {
+    const float g = angles[i] - angles[i - 1];
+    if (g > best) {
+      best = g;
+      start = angles[i - 1];
+    }
+  }
+  const float mid = start + 0.5f * best;
+  return {best, Vec2f(std::cos(mid), std::sin(mid))};
+}
+
+/// The unit vector pointing to the empty side of heading d: side = +1 on the right of d in (u, v), −1 on the left.
+Vec2f side_of(const Vec2f& d, float side) { return side * Vec2f(d.y(), -d.x()); }
+
+/// The heading a walk starts with so that the empty direction `outward` lies on its `side`.
+Vec2f heading_for(const Vec2f& outward, float side) { return side * Vec2f(-outward.y(), outward.x()); }
+
+float polyline_length(std::span<const Vec3f> pts, bool closed) {
+  float length = 0;
+  for (std::size_t i = 1; i < pts.size(); ++i) length += (pts[i] - pts[i - 1]).norm();
+  if (closed && pts.size() > 2) length += (pts.front() - pts.back()).norm();
+  return length;
+}
+
+/// State shared by the walks over one set of contour points: positions (2D image or 3D), per-point search scale,
+/// and the points already used (taken or absorbed).
+template <int D>
+struct Walker {
+  using Vec = Eigen::Matrix<float, D, 1>;
+  std::span<const Vec> pts;
+  const detail::PointGrid<D>& grid;
+  std::span<const float> scale;  ///< per point: the unit the radius factors multiply (h_px, or h in 3D)
+  const ContourOptions& options;
+  std::vector<char> used;
+
+  /// Marks unused points beside or behind the step p → q (within `absorb` of the segment line, projection ≤ |pq|).
+  void absorb(std::uint32_t from, std::uint32_t to, float absorb_radius) {
+    const Vec p = pts[from];
+    const Vec step = pts[to] - p;
+    const float len = step.norm();
+    if (len <= 0) return;
+    const Vec dir = step / len;
+    grid.for_each_within(p, len + absorb_radius, [&](std::uint32_t j, float) {
+      if (used[j]) return;
+      const Vec c = pts[j] - p;
+      const float t = c.dot(dir);
+      if (t > len || t < -absorb_radius) return;
+      if ((c - t * dir).norm() < absorb_radius) used[j] = 1;
+    });
+  }
+
+  /// Unit heading over the last `heading_steps` steps of the chain (n_p = p_front − p, smoothed).
+  Vec heading(const std::vector<std::uint32_t>& chain) const {
+    const std::size_t back = std::min(chain.size() - 1, std::max<std::size_t>(options.heading_steps, 1));
+    Vec d = pts[chain.back()] - pts[chain[chain.size() - 1 - back]];
+    const float len = d.norm();
+    return len > 0 ? Vec(d / len) : d;
+  }
+
+  /// Grows `chain` (holding the seed) by repeatedly taking the point `choose(cur, heading)` returns; stops when it
+  /// returns none or closes on the seed (only when `may_close`). Returns whether the chain closed.
+  template <class Choose>
+  bool grow(std::vector<std::uint32_t>& chain, Vec heading_now, bool may_close, Choose&& choose) {
+    const std::uint32_t seed = chain.front();
+    float walked = 0;
+    for (;;) {
+      const std::uint32_t cur = chain.back();
+      const float radius = options.trace_radius_factor * scale[cur];
+      const bool seed_eligible = may_close && chain.size() >= 4 && walked > 2 * radius;
+      const std::int64_t next = choose(cur, heading_now, radius, seed_eligible ? seed : cur);
+      if (next < 0) return false;
+      const auto q = static_cast<std::uint32_t>(next);
+      if (q == seed) return true;
+      absorb(cur, q, options.absorb_factor * scale[cur]);
+      walked += (pts[q] - pts[cur]).norm();
+      used[q] = 1;
+      chain.push_back(q);
+      heading_now = heading(chain);
+    }
+  }
+};
+
+/// Chains the outline's boundary points in the image plane (forward with the empty side on the right, then
+/// backward from the seed when the outline did not close).
+std::vector<Polyline> trace_outline(const ContourPoints& cp, const std::vector<Vec3f>& positions,
+                                    const ContourOptions& o) {
+  const std::size_t nb = cp.boundary.size();
+  std::vector<Vec2f> pts(nb);
+  std::vector<float> scale(nb);
+  double mean_scale = 0;
+  for (std::size_t b = 0; b < nb; ++b) {
+    pts[b] = cp.projected[cp.boundary[b]].head<2>();
+    scale[b] = cp.spacing_px[cp.boundary[b]];
+    mean_scale += scale[b];
+  }
+  if (nb == 0) return {};
+  mean_scale /= static_cast<double>(nb);
+  const detail::PointGrid<2> grid(pts, o.trace_radius_factor * static_cast<float>(mean_scale));
+  Walker<2> walker{pts, grid, scale, o, std::vector<char>(nb, 0)};
+  const float max_turn = o.max_turn_deg * kDegToRad;
+
+  // Returns the next point from `cur` along `d` with the empty side on `side`, or -1. `closing` is the seed when
+  // it may close the line (else cur itself, which is never a candidate).
+  auto chooser = [&](float side) {
+    return [&, side](std::uint32_t cur, const Vec2f& d, float radius, std::uint32_t closing) -> std::int64_t {
+      const Vec2f p = pts[cur];
+      const Vec2f s = side_of(d, side);
+      const float z_max = o.z_max_factor * scale[cur];
+      std::int64_t best = -1;
+      float best_score = 0, best_dist = 0;
+      bool closes = false;
+      grid.for_each_within(p, radius, [&](std::uint32_t j, float d2) {
+        if (j == cur || (walker.used[j] && j != closing)) return;
+        const Vec2f c = pts[j] - p;
+        const float dist = std::sqrt(d2);
+        if (dist <= 1e-6f * radius) {
+          walker.used[j] = 1;  // a duplicate of the current point
+          return;
+        }
+        const float along = c.dot(d), lateral = c.dot(s);
+        const float angle = std::atan2(lateral, along);
+        if (std::abs(angle) > max_turn) return;
+        if (j == closing) {
+          closes = true;
+          return;
+        }
+        float score;
+        if (o.connection == OutlineConnection::Outermost) {
+          score = angle;
+        } else {
+          if (along <= 0 || std::abs(lateral) >= z_max) return;
+          score = -dist;
+        }
+        if (best < 0 || score > best_score || (score == best_score && dist < best_dist)) {
+          best = j;
+          best_score = score;
+          best_dist = dist;
+        }
+      });
+      return closes ? static_cast<std::int64_t>(closing) : best;
+    };
+  };
+
+  // Seeds from the left, as the paper does: the leftmost point is on the outer outline.
+  std::vector<std::uint32_t> seeds(nb);
+  std::iota(seeds.begin(), seeds.end(), 0u);
+  std::sort(seeds.begin(), seeds.end(), [&](std::uint32_t a, std::uint32_t b) {
+    if (pts[a].x() != pts[b].x()) return pts[a].x() < pts[b].x();
+    if (pts[a].y() != pts[b].y()) return pts[a].y() < pts[b].y();
+    return a < b;
+  });
+
+  std::vector<Polyline> lines;
+  for (const std::uint32_t seed : seeds) {
+    if (walker.used[seed]) continue;
+    walker.used[seed] = 1;
+    std::vector<std::uint32_t> forward{seed};
+    const bool closed = walker.grow(forward, heading_for(cp.outward[seed], +1.f), true, chooser(+1.f));
+    std::vector<std::uint32_t> chain;
+    if (!closed) {
+      std::vector<std::uint32_t> backward{seed};
+      walker.grow(backward, heading_for(cp.outward[seed], -1.f), false, chooser(-1.f));
+      chain.assign(backward.rbegin(), backward.rend());
+      chain.insert(chain.end(), forward.begin() + 1, forward.end());
+    } else {
+      chain = std::move(forward);
+    }
+    Polyline line;
+    line.kind = LineKind::Contour;
+    line.closed = closed;
+    std::vector<Vec3f> image(chain.size());
+    float scale_sum = 0;
+    for (std::size_t i = 0; i < chain.size(); ++i) {
+      const std::uint32_t point = cp.boundary[chain[i]];
+      line.points.push_back(positions[point]);
+      line.point_index.push_back(point);
+      image[i] = Vec3f(pts[chain[i]].x(), pts[chain[i]].y(), 0.f);
+      scale_sum += scale[chain[i]];
+    }
+    const float min_length = o.min_length_factor * scale_sum / static_cast<float>(chain.size());
+    if (chain.size() >= 3 && polyline_length(image, closed) >= min_length) lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+/// Chains the interior rim samples in 3D with the paper's rule (nearest ahead within z_max of the direction line),
+/// after dropping those the outline already covers.
+std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<Polyline>& outline, float h,
+                                     const ContourOptions& o) {
+  // Outline vertices and points along its segments, every h/2, stand for the outline in 3D.
+  std::vector<Vec3f> outline_samples;
+  for (const Polyline& line : outline) {
+    const std::size_t n = line.points.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i + 1 == n && !line.closed) {
+        outline_samples.push_back(line.points[i]);
+        break;
+      }
+      const Vec3f a = line.points[i], b = line.points[(i + 1) % n];
+      const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / (0.5f * h))));
+      for (int s = 0; s < steps; ++s) outline_samples.push_back(a + (b - a) * (static_cast<float>(s) / static_cast<float>(steps)));
+    }
+  }
+  const float dedupe = o.interior_dedupe_factor * h;
+  const detail::PointGrid<3> outline_grid(outline_samples, dedupe);
+  std::vector<Vec3f> rim;
+  std::vector<std::uint32_t> rim_point;
+  for (std::size_t r = 0; r < cp.rim.size(); ++r) {
+    bool near = false;
+    outline_grid.for_each_within(cp.rim[r], dedupe, [&](std::uint32_t, float) { near = true; });
+    if (near) continue;
+    rim.push_back(cp.rim[r]);
+    rim_point.push_back(cp.rim_point[r]);
+  }
+  if (rim.empty()) return {};
+
+  const std::vector<float> scale(rim.size(), h);
+  const float radius = o.interior_trace_radius_factor * h;
+  const detail::PointGrid<3> grid(rim, radius);
+  ContourOptions walk_options = o;
+  walk_options.trace_radius_factor = o.interior_trace_radius_factor;
+  Walker<3> walker{rim, grid, scale, walk_options, std::vector<char>(rim.size(), 0)};
+  const float z_max = o.z_max_factor * h;
+  const float cos_turn = std::cos(o.max_turn_deg * kDegToRad);
+
+  auto choose = [&](std::uint32_t cur, const Vec3f& d, float r, std::uint32_t closing) -> std::int64_t {
+    const Vec3f p = rim[cur];
+    std::int64_t best = -1;
+    float best_d2 = 0;
+    grid.for_each_within(p, r, [&](std::uint32_t j, float d2) {
+      if (j == cur || (walker.used[j] && j != closing)) return;
+      const Vec3f c = rim[j] - p;
+      const float along = c.dot(d);
+      if (along <= 0 || (c - along * d).norm() >= z_max || along < cos_turn * std::sqrt(d2)) return;
+      if (best < 0 || d2 < best_d2 || (d2 == best_d2 && j < best)) {
+        best = j;
+        best_d2 = d2;
+      }
+    });
+    return best;
+  };
+
+  std::vector<Polyline> lines;
+  for (std::uint32_t seed = 0; seed < rim.size(); ++seed) {
+    if (walker.used[seed]) continue;
+    walker.used[seed] = 1;
+    // Paper: the first direction points to p_front, the nearest unused point.
+    std::int64_t front = -1;
+    float front_d2 = 0;
+    grid.for_each_within(rim[seed], radius, [&](std::uint32_t j, float d2) {
+      if (j == seed || walker.used[j] || d2 <= 0) return;
+      if (front < 0 || d2 < front_d2 || (d2 == front_d2 && j < front)) {
+        front = j;
+        front_d2 = d2;
+      }
+    });
+    if (front < 0) continue;
+    const Vec3f d0 = (rim[static_cast<std::size_t>(front)] - rim[seed]).normalized();
+    std::vector<std::uint32_t> forward{seed};
+    const bool closed = walker.grow(forward, d0, true, choose);
+    std::vector<std::uint32_t> chain;
+    if (!closed) {
+      std::vector<std::uint32_t> backward{seed};
+      walker.grow(backward, Vec3f(-d0), false, choose);
+      chain.assign(backward.rbegin(), backward.rend());
+      chain.insert(chain.end(), forward.begin() + 1, forward.end());
+    } else {
+      chain = std::move(forward);
+    }
+    Polyline line;
+    line.kind = LineKind::Contour;
+    line.closed = closed;
+    for (const std::uint32_t c : chain) {
+      line.points.push_back(rim[c]);
+      line.point_index.push_back(rim_point[c]);
+    }
+    if (chain.size() >= 3 && polyline_length(line.points, closed) >= o.min_length_factor * h)
+      lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+}  // namespace
+
+nlohmann::json ContourOptions::to_json() const {
+  return {{"radius_factor", radius_factor},
+          {"k", k},
+          {"gap_threshold_deg", gap_threshold_deg},
+          {"quadrant_test", quadrant_test},
+          {"confirm_factor", confirm_factor},
+          {"confirm_half_angle_deg", confirm_half_angle_deg},
+          {"connection", connection == OutlineConnection::Outermost ? "outermost" : "direction_guided"},
+          {"trace_radius_factor", trace_radius_factor},
+          {"z_max_factor", z_max_factor},
+          {"max_turn_deg", max_turn_deg},
+          {"absorb_factor", absorb_factor},
+          {"heading_steps", heading_steps},
+          {"min_length_factor", min_length_factor},
+          {"interior", interior},
+          {"interior_neighbours", interior_neighbours},
+          {"interior_dedupe_factor", interior_dedupe_factor},
+          {"interior_trace_radius_factor", interior_trace_radius_factor}};
+}
+
+ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
+                                  const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
+                                  const Camera& camera, const ContourOptions& o) {
+  if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("contours: the mean spacing h must be positive");
+  const std::size_t n = positions.size();
+  if (o.interior && n > 0) {
+    if (normals.size() != n) throw Error("contours: interior contours need one normal per point (run analyse_surface)");
+    if (neighbourhoods.size() != n || neighbourhoods.k == 0)
+      throw Error("contours: interior contours need the cloud's neighbourhoods (run analyse_surface)");
+  }
+  ContourPoints cp;
+  cp.projected.resize(n);
+  cp.spacing_px.resize(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      cp.projected[i] = camera.project(positions[i]);
+      const float depth = cp.projected[i].z();
+      const bool in_front = camera.projection == Projection::Orthographic || depth > 0;
+      cp.spacing_px[i] = in_front && cp.projected[i].allFinite() ? spacing / camera.units_per_pixel(depth) : 0.f;
+    }
+  });
+
+  // Points behind a perspective eye are left out of the image-plane analysis.
+  std::vector<std::uint32_t> valid;
+  valid.reserve(n);
+  double mean_px = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (cp.spacing_px[i] > 0) {
+      valid.push_back(static_cast<std::uint32_t>(i));
+      mean_px += cp.spacing_px[i];
+    }
+  if (!valid.empty()) {
+    mean_px /= static_cast<double>(valid.size());
+    std::vector<Vec2f> uv(valid.size());
+    for (std::size_t v = 0; v < valid.size(); ++v) uv[v] = cp.projected[valid[v]].head<2>();
+    const detail::PointGrid<2> grid(uv, o.radius_factor * static_cast<float>(mean_px));
+    std::vector<char> is_boundary(valid.size(), 0);
+    std::vector<Vec2f> outward(valid.size(), Vec2f::Zero());
+    const float threshold = o.gap_threshold_deg * kDegToRad;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, valid.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+      std::vector<std::pair<float, std::uint32_t>> near;
+      std::vector<Vec2f> dirs;
+      std::vector<float> angles;
+      for (std::size_t v = range.begin(); v != range.end(); ++v) {
+        const float r = o.radius_factor * cp.spacing_px[valid[v]];
+        near.clear();
+        grid.for_each_within(uv[v], r, [&](std::uint32_t j, float d2) {
+          if (d2 > 1e-8f * r * r) near.emplace_back(d2, j);  // self and exact duplicates carry no direction
+        });
+        if (near.size() > o.k) {
+          std::nth_element(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(o.k), near.end());
+          near.resize(o.k);
+        }
+        dirs.clear();
+        bool quadrant[4] = {false, false, false, false};
+        for (const auto& [d2, j] : near) {
+          const Vec2f c = uv[j] - uv[v];
+          dirs.push_back(c);
+          quadrant[(c.x() >= 0 ? 0 : 1) + (c.y() >= 0 ? 0 : 2)] = true;
+        }
+        const auto [gap, bisector] = largest_gap(angles, dirs);
+        const bool empty_quadrant = !(quadrant[0] && quadrant[1] && quadrant[2] && quadrant[3]);
+        if (!(gap > threshold || (o.quadrant_test && empty_quadrant))) continue;
+        // Confirmation: outside a true outline the empty region goes on, while a sampling hole inside the outline
+        // (random sampling leaves some of about r) is closed beyond it.
+        bool confirmed = true;
+        if (o.confirm_factor > 1) {
+          const float cos_cone = std::cos(o.confirm_half_angle_deg * kDegToRad);
+          grid.for_each_within(uv[v], o.confirm_factor * r, [&](std::uint32_t j, float d2) {
+            if (!confirmed || d2 <= r * r) return;
+            const Vec2f c = uv[j] - uv[v];
+            if (c.dot(bisector) > cos_cone * std::sqrt(d2)) confirmed = false;
+          });
+        }
+        if (confirmed) {
+          is_boundary[v] = 1;
+          outward[v] = bisector;
+        }
+      }
+    });
+    for (std::size_t v = 0; v < valid.size(); ++v)
+      if (is_boundary[v]) {
+        cp.boundary.push_back(valid[v]);
+        cp.outward.push_back(outward[v]);
+      }
+  }
+
+  if (o.interior && n > 0) {
+    // f = n·v < 0 faces the viewer; a rim sample sits at the zero crossings between a front-facing point and its
+    // back-facing neighbours (averaged), i.e. on the occluding contour generator.
+    std::vector<float> facing(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i)
+        facing[i] = normals[i].dot(camera.ray_direction(positions[i]));
+    });
+    std::vector<Vec3f> sample(n);
+    std::vector<char> has_sample(n, 0);
+    const std::size_t m = std::min(o.interior_neighbours, neighbourhoods.k);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        const float fi = facing[i];
+        if (!(fi < 0) || cp.spacing_px[i] <= 0) continue;
+        Vec3f sum = Vec3f::Zero();
+        int count = 0;
+        const auto nb = neighbourhoods.of(i);
+        for (std::size_t a = 0; a < m; ++a) {
+          const std::uint32_t j = nb[a];
+          const float fj = facing[j];
+          if (!(fj > 0)) continue;
+          const float t = fi / (fi - fj);
+          sum += positions[i] + t * (positions[j] - positions[i]);
+          ++count;
+        }
+        if (count > 0) {
+          sample[i] = sum / static_cast<float>(count);
+          has_sample[i] = 1;
+        }
+      }
+    });
+    for (std::size_t i = 0; i < n; ++i)
+      if (has_sample[i]) {
+        cp.rim.push_back(sample[i]);
+        cp.rim_point.push_back(static_cast<std::uint32_t>(i));
+      }
+  }
+  return cp;
+}
+
+ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec3f>& positions, float spacing,
+                              const ContourOptions& options) {
+  if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("contours: the mean spacing h must be positive");
+  ContourLines lines;
+  lines.outline = trace_outline(points, positions, options);
+  if (options.interior) lines.interior = trace_interior(points, lines.outline, spacing, options);
+  return lines;
+}
+
+}  // namespace pcsketch::view

@@ -1,0 +1,112 @@
+#pragma once
+// A uniform grid over 2D or 3D points for fixed-radius queries (private to the view stage). Dense over the points'
+// bounding box, with the cell size enlarged when needed so the cell count stays within a few times the point count.
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace pcsketch::view::detail {
+
+template <int D>
+class PointGrid {
+ public:
+  using Vec = Eigen::Matrix<float, D, 1>;
+
+  /// Grid over `points` (which must outlive it) with cells of at least `cell` units.
+  PointGrid(std::span<const Vec> points, float cell) : points_(points) {
+    lo_ = Vec::Constant(0.f);
+    Vec hi = Vec::Constant(0.f);
+    if (!points.empty()) {
+      lo_ = points[0];
+      hi = points[0];
+      for (const Vec& p : points) {
+        lo_ = lo_.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+    }
+    const Vec extent = (hi - lo_).cwiseMax(Vec::Constant(1e-6f));
+    cell_ = std::max(cell, 1e-6f * extent.maxCoeff());
+    // Cap the cell count at about 4 per point (plus a constant): enlarge cells until it fits.
+    const double budget = 4.0 * static_cast<double>(points.size()) + 64.0;
+    for (;;) {
+      double cells = 1;
+      for (int d = 0; d < D; ++d) cells *= std::floor(extent[d] / cell_) + 1;
+      if (cells <= budget) break;
+      cell_ *= 1.5f;
+    }
+    std::size_t total = 1;
+    for (int d = 0; d < D; ++d) {
+      dims_[d] = static_cast<std::int64_t>(std::floor(extent[d] / cell_)) + 1;
+      total *= static_cast<std::size_t>(dims_[d]);
+    }
+    // Counting sort of the points by cell.
+    start_.assign(total + 1, 0);
+    std::vector<std::uint32_t> cell_of(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      cell_of[i] = static_cast<std::uint32_t>(linear(coords(points[i])));
+      ++start_[cell_of[i] + 1];
+    }
+    for (std::size_t c = 0; c < total; ++c) start_[c + 1] += start_[c];
+    order_.resize(points.size());
+    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < points.size(); ++i) order_[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  }
+
+  float cell() const { return cell_; }
+
+  /// Calls f(index, squared distance) for every point within `radius` of q, in grid order (deterministic).
+  template <class F>
+  void for_each_within(const Vec& q, float radius, F&& f) const {
+    if (points_.empty()) return;
+    const float r2 = radius * radius;
+    Eigen::Matrix<std::int64_t, D, 1> a, b;
+    for (int d = 0; d < D; ++d) {
+      a[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((q[d] - radius - lo_[d]) / cell_)), 0,
+                                      dims_[d] - 1);
+      b[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((q[d] + radius - lo_[d]) / cell_)), 0,
+                                      dims_[d] - 1);
+      if (q[d] + radius < lo_[d] || q[d] - radius > lo_[d] + cell_ * static_cast<float>(dims_[d])) return;
+    }
+    Eigen::Matrix<std::int64_t, D, 1> c = a;
+    for (;;) {
+      const std::size_t cell = linear(c);
+      for (std::uint32_t k = start_[cell]; k < start_[cell + 1]; ++k) {
+        const std::uint32_t i = order_[k];
+        const float d2 = (points_[i] - q).squaredNorm();
+        if (d2 <= r2) f(i, d2);
+      }
+      int d = 0;
+      while (d < D && ++c[d] > b[d]) {
+        c[d] = a[d];
+        ++d;
+      }
+      if (d == D) break;
+    }
+  }
+
+ private:
+  Eigen::Matrix<std::int64_t, D, 1> coords(const Vec& p) const {
+    Eigen::Matrix<std::int64_t, D, 1> c;
+    for (int d = 0; d < D; ++d)
+      c[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>((p[d] - lo_[d]) / cell_), 0, dims_[d] - 1);
+    return c;
+  }
+  std::size_t linear(const Eigen::Matrix<std::int64_t, D, 1>& c) const {
+    std::size_t index = 0;
+    for (int d = D - 1; d >= 0; --d) index = index * static_cast<std::size_t>(dims_[d]) + static_cast<std::size_t>(c[d]);
+    return index;
+  }
+
+  std::span<const Vec> points_;
+  Vec lo_;
+  float cell_ = 1.f;
+  std::int64_t dims_[D]{};
+  std::vector<std::uint32_t> start_;
+  std::vector<std::uint32_t> order_;
+};
+
+}  // namespace pcsketch::view::detail

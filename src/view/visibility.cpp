@@ -1,0 +1,141 @@
+#include "pcsketch/view/visibility.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "pcsketch/core/error.h"
+
+namespace pcsketch::view {
+
+namespace {
+
+/// Whether p is seen: no disc between it (past the self offset) and the viewer.
+bool sees(const SurfaceScene& scene, const Camera& camera, const Vec3f& p, float offset) {
+  const Vec3f to_viewer = -camera.ray_direction(p);
+  float t_far = std::numeric_limits<float>::infinity();
+  if (camera.projection == Projection::Perspective) {
+    const float depth = (p - camera.eye).dot(camera.forward);
+    if (!(depth > 0)) return false;
+    t_far = (camera.eye - p).norm();
+  }
+  return !scene.occluded(p, to_viewer, offset, t_far);
+}
+
+/// Majority vote over a centred window (wrapping on closed lines, shrinking at open ends).
+std::vector<std::uint8_t> smooth_flags(const std::vector<std::uint8_t>& raw, std::size_t window, bool closed) {
+  const std::size_t n = raw.size();
+  if (window <= 1 || n < 3) return raw;
+  const auto half = static_cast<std::ptrdiff_t>(window / 2);
+  std::vector<std::uint8_t> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    int seen = 0, total = 0;
+    for (std::ptrdiff_t o = -half; o <= half; ++o) {
+      auto j = static_cast<std::ptrdiff_t>(i) + o;
+      if (closed) {
+        j = (j % static_cast<std::ptrdiff_t>(n) + static_cast<std::ptrdiff_t>(n)) % static_cast<std::ptrdiff_t>(n);
+      } else if (j < 0 || j >= static_cast<std::ptrdiff_t>(n)) {
+        continue;
+      }
+      seen += raw[static_cast<std::size_t>(j)];
+      ++total;
+    }
+    out[i] = static_cast<std::uint8_t>(2 * seen > total ? 1 : (2 * seen < total ? 0 : raw[i]));
+  }
+  return out;
+}
+
+void build_runs(ViewLine& vl, const Camera& camera) {
+  const Polyline& line = vl.line;
+  const std::size_t n = line.points.size();
+  if (n == 0) return;
+  const std::size_t segments = line.closed && n > 2 ? n : n - 1;
+  auto add = [&](LineRun& run, const Vec3f& p, float param) {
+    run.points.push_back(p);
+    run.projected.push_back(camera.project(p));
+    run.param.push_back(param);
+  };
+  LineRun run;
+  run.visible = vl.visible[0] != 0;
+  add(run, line.points[0], 0.f);
+  for (std::size_t s = 0; s < segments; ++s) {
+    const std::size_t b = (s + 1) % n;
+    const bool vb = vl.visible[b] != 0;
+    if (vb != run.visible) {
+      const float f = vl.split[s];
+      const Vec3f mid = line.points[s] + f * (line.points[b] - line.points[s]);
+      add(run, mid, static_cast<float>(s) + f);
+      vl.runs.push_back(std::move(run));
+      run = LineRun{};
+      run.visible = vb;
+      add(run, mid, static_cast<float>(s) + f);
+    }
+    add(run, line.points[b], static_cast<float>(s + 1));
+  }
+  vl.runs.push_back(std::move(run));
+}
+
+}  // namespace
+
+nlohmann::json VisibilityOptions::to_json() const {
+  return {{"self_offset_factor", self_offset_factor},
+          {"smoothing_window", smoothing_window},
+          {"transition_refinement", transition_refinement}};
+}
+
+ViewLine seen_line(const Polyline& line, const Camera& camera) {
+  ViewLine vl;
+  vl.line = line;
+  const std::size_t n = line.points.size();
+  vl.projected.resize(n);
+  for (std::size_t i = 0; i < n; ++i) vl.projected[i] = camera.project(line.points[i]);
+  vl.visible.assign(n, 1);
+  vl.split.assign(n == 0 ? 0 : (line.closed && n > 2 ? n : n - 1), 0.5f);
+  build_runs(vl, camera);
+  return vl;
+}
+
+std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const SurfaceScene& scene,
+                                      const Camera& camera, float spacing, const VisibilityOptions& o) {
+  if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("visibility: the mean spacing h must be positive");
+  if (o.smoothing_window % 2 == 0) throw Error("visibility: the smoothing window must be odd");
+  const float offset = o.self_offset_factor * spacing;
+  std::vector<ViewLine> out(lines.size());
+  // Lines vary from a handful to thousands of vertices; a grain of one line keeps both cores busy.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t l = r.begin(); l != r.end(); ++l) {
+      ViewLine& vl = out[l];
+      vl.line = lines[l];
+      const std::size_t n = vl.line.points.size();
+      vl.projected.resize(n);
+      std::vector<std::uint8_t> raw(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        vl.projected[i] = camera.project(vl.line.points[i]);
+        raw[i] = sees(scene, camera, vl.line.points[i], offset) ? 1 : 0;
+      }
+      vl.visible = smooth_flags(raw, o.smoothing_window, vl.line.closed);
+      const std::size_t segments = n == 0 ? 0 : (vl.line.closed && n > 2 ? n : n - 1);
+      vl.split.assign(segments, 0.5f);
+      for (std::size_t s = 0; s < segments; ++s) {
+        const std::size_t b = (s + 1) % n;
+        if (vl.visible[s] == vl.visible[b]) continue;
+        // Bisect for the change point; the end with the smoothed flag of `s` is kept at lo.
+        float lo = 0.f, hi = 1.f;
+        const Vec3f pa = vl.line.points[s], pb = vl.line.points[b];
+        for (int it = 0; it < o.transition_refinement; ++it) {
+          const float mid = 0.5f * (lo + hi);
+          const bool v = sees(scene, camera, pa + mid * (pb - pa), offset);
+          (v == (vl.visible[s] != 0) ? lo : hi) = mid;
+        }
+        vl.split[s] = 0.5f * (lo + hi);
+      }
+      build_runs(vl, camera);
+    }
+  });
+  return out;
+}
+
+}  // namespace pcsketch::view

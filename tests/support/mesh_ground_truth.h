@@ -1,0 +1,55 @@
+#pragma once
+// Ground truth for view-dependent lines, computed from a triangle mesh: the occluding contours a camera sees, and a
+// precision/recall score of drawn lines against them. Used by the view tests and by benches scoring drawings.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "pcsketch/core/point_cloud.h"
+#include "pcsketch/view/camera.h"
+#include "pcsketch/view/visibility.h"
+
+namespace pcsketch::test {
+
+struct MeshContourOptions {
+  /// Contour edges are sampled every this many pixels (image distance).
+  float sample_step_px = 0.5f;
+  /// A sample is visible when some pixel within this many pixels (a (2w+1)² window) holds a depth not in front of
+  /// it: at a silhouette the pixels on its far side show the background or a farther surface, while a sample behind
+  /// an occluder sees only nearer depths around it. 1 gives a ±1 px fuzz at the occluder's own silhouette.
+  int depth_window = 1;
+  /// Depth tolerance of that test, in pixel sizes (model units per pixel at the sample's depth).
+  float depth_tolerance_px = 2.0f;
+};
+
+/// What a camera sees of a mesh's occluding contours.
+struct MeshContours {
+  /// Occluding contour edges (between a front- and a back-facing face) and boundary edges, 3D, relative coordinates.
+  std::vector<std::array<Vec3f, 2>> edges;
+  std::vector<Vec2f> visible;  ///< image positions (pixels) of the visible samples along those edges
+  std::vector<Vec2f> hidden;   ///< image positions of the hidden samples
+};
+
+/// Occluding contours of `mesh` seen by `camera`, their visibility decided by a z-buffer of the mesh rasterised at
+/// the camera's image size (perspective depths interpolated as 1/depth). Samples outside the image are dropped.
+MeshContours mesh_contours(const Mesh& mesh, const view::Camera& camera, const MeshContourOptions& options = {});
+
+/// Precision and recall of drawn lines against ground truth, both given as dense 2D samples.
+struct LineMatch {
+  double precision = 0;  ///< fraction of drawn samples within the tolerance of a ground-truth sample
+  double recall = 0;     ///< fraction of ground-truth samples within the tolerance of a drawn sample
+  std::size_t drawn = 0, truth = 0;
+};
+
+/// Scores `drawn` against `truth` (image positions, pixels) with a tolerance in pixels. Empty sets score 0.
+LineMatch match_lines(const std::vector<Vec2f>& drawn, const std::vector<Vec2f>& truth, float tolerance_px);
+
+/// Samples of a 2D polyline every `step_px` pixels (vertices included).
+std::vector<Vec2f> sample_polyline(const std::vector<Vec2f>& points, bool closed, float step_px);
+
+/// Image samples (every `step_px`) of the runs of `lines` of the given kind: visible runs, or hidden ones.
+std::vector<Vec2f> sample_view_lines(const std::vector<view::ViewLine>& lines, LineKind kind, bool visible,
+                                     float step_px = 0.5f);
+
+}  // namespace pcsketch::test

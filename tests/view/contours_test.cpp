@@ -1,0 +1,80 @@
+#include "pcsketch/view/contours.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pcsketch/core/error.h"
+#include "support/analytic_shapes.h"
+#include "view/view_test_support.h"
+
+namespace pcsketch::view {
+namespace {
+
+using testing::Analysed;
+
+/// Largest distance (pixels) of a contour's vertices from the circle of `radius_px` around `centre`.
+float max_circle_error(const ViewLine& line, const Vec2f& centre, float radius_px) {
+  float worst = 0;
+  for (const Vec3f& q : line.projected) worst = std::max(worst, std::abs((q.head<2>() - centre).norm() - radius_px));
+  return worst;
+}
+
+std::vector<const ViewLine*> contours_of(const ViewResult& view) {
+  std::vector<const ViewLine*> out;
+  for (std::size_t i = 0; i < view.contour_count; ++i) out.push_back(&view.lines[i]);
+  return out;
+}
+
+TEST(Contours, SphereHasOneClosedContourOnTheProjectedCircle) {
+  const Analysed sphere(test::sphere(1.f, {.n = 30000}));
+  const ViewResult view = sphere.view({.width = 1024, .height = 1024});
+  const auto contours = contours_of(view);
+  ASSERT_EQ(contours.size(), 1u);
+  EXPECT_TRUE(contours[0]->line.closed);
+  const Vec3f centre = view.camera.project(Vec3f::Zero());
+  EXPECT_LT(max_circle_error(*contours[0], centre.head<2>(), view.camera.scale), 1.f);
+  EXPECT_GT(contours[0]->line.size(), 100u);
+  // The outline of a convex body is seen everywhere.
+  for (const std::uint8_t v : contours[0]->visible) EXPECT_EQ(v, 1);
+}
+
+TEST(Contours, PaperDirectionGuidedRuleAlsoClosesTheSphere) {
+  const Analysed sphere(test::sphere(1.f, {.n = 30000}));
+  const ViewResult view = sphere.view({}, {}, {.contours = {.connection = OutlineConnection::DirectionGuided}});
+  const auto contours = contours_of(view);
+  ASSERT_EQ(contours.size(), 1u);
+  EXPECT_TRUE(contours[0]->line.closed);
+  const Vec3f centre = view.camera.project(Vec3f::Zero());
+  EXPECT_LT(max_circle_error(*contours[0], centre.head<2>(), view.camera.scale), 3.f);
+}
+
+TEST(Contours, TorusAlongItsAxisHasRimAndHole) {
+  const float R = 1.f, r = 0.35f;
+  const Analysed torus(test::torus(R, r, {.n = 30000}));
+  const ViewResult view = torus.view({.direction = Vec3d(0, 0, 1)});
+  const auto contours = contours_of(view);
+  ASSERT_EQ(contours.size(), 2u);
+  const Vec2f centre = view.camera.project(Vec3f::Zero()).head<2>();
+  std::vector<float> radii;
+  for (const ViewLine* c : contours) {
+    EXPECT_TRUE(c->line.closed);
+    float mean = 0;
+    for (const Vec3f& q : c->projected) mean += (q.head<2>() - centre).norm();
+    radii.push_back(mean / static_cast<float>(c->projected.size()));
+  }
+  std::sort(radii.begin(), radii.end());
+  EXPECT_NEAR(radii[0], (R - r) * view.camera.scale, 2.f);
+  EXPECT_NEAR(radii[1], (R + r) * view.camera.scale, 2.f);
+}
+
+TEST(Contours, RejectsNonPositiveSpacing) {
+  const PointCloud s = test::sphere(1.f, {.n = 100});
+  const Camera camera = make_camera(s.positions, s.origin);
+  EXPECT_THROW(find_contour_points(s.positions, s.normals, {}, 0.f, camera, {.interior = false}), Error);
+  EXPECT_THROW(find_contour_points(s.positions, {}, {}, 0.01f, camera, {.interior = true}), Error);
+}
+
+}  // namespace
+}  // namespace pcsketch::view
