@@ -83,21 +83,23 @@ class HeapKnn {
   Candidate* out_;
 };
 
-/// Every point with squared distance ≤ radius² (inclusive, unlike nanoflann's RadiusResultSet).
+/// Every point at true distance ≤ radius (inclusive, unlike nanoflann's RadiusResultSet; compared after the square
+/// root so that the reported distance and the test agree exactly).
 class InclusiveRadius {
  public:
-  InclusiveRadius(float radius_sq, std::vector<std::pair<std::uint32_t, float>>& hits)
-      : radius_sq_(radius_sq), hits_(hits) {}
+  InclusiveRadius(float radius, std::vector<std::pair<std::uint32_t, float>>& hits)
+      : radius_(radius), bound_(widened(radius * radius)), hits_(hits) {}
   bool full() const { return true; }
   std::size_t size() const { return hits_.size(); }
-  float worstDist() const { return widened(radius_sq_); }
+  float worstDist() const { return bound_; }
   bool addPoint(float dist, std::uint32_t index) {
-    if (dist <= radius_sq_) hits_.emplace_back(index, dist);
+    if (std::sqrt(dist) <= radius_) hits_.emplace_back(index, dist);
     return true;
   }
 
  private:
-  float radius_sq_;
+  float radius_;
+  float bound_;
   std::vector<std::pair<std::uint32_t, float>>& hits_;
 };
 
@@ -166,7 +168,7 @@ void KdTree::radius(const Vec3f& query, float radius, std::vector<std::uint32_t>
   if (!(radius >= 0) || size() == 0) return;
   thread_local std::vector<std::pair<std::uint32_t, float>> hits;
   hits.clear();
-  InclusiveRadius result(radius * radius, hits);
+  InclusiveRadius result(radius, hits);
   impl_->index.findNeighbors(result, query.data(), nanoflann::SearchParams());
   std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
     return a.second < b.second || (a.second == b.second && a.first < b.first);

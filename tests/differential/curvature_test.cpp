@@ -71,5 +71,71 @@ TEST(Curvature, NoisySphereWithinTenPercent) {
   EXPECT_GT(c.fit_neighbours, a.surface.neighbourhoods.k);  // the noise was noticed
 }
 
+TEST(Curvature, CylinderAwayFromRims) {
+  const float r = 1.f, height = 4.f;
+  const Analysed a = analyse(test::cylinder(r, height, {.n = 20000, .seed = 3}));
+  const Curvature& c = a.surface.curvature;
+  const auto inside = [&](std::size_t i) { return std::abs(a.cloud.positions[i].z()) < height / 2 - 0.3f; };
+  const double within = fraction(a.cloud.size(), inside, [&](std::size_t i) {
+    return std::abs(c.k1[i] * r - 1.f) < 0.03f && std::abs(c.k2[i] * r) < 0.03f &&
+           std::abs(c.dir2[i].z()) > 0.99f;  // the straight direction is the axis
+  });
+  EXPECT_GE(within, 0.95);
+  for (std::size_t i = 0; i < a.cloud.size(); ++i) ASSERT_GT(a.cloud.normals[i].dot(a.truth[i]), 0.f) << i;
+}
+
+TEST(Curvature, PlaneIsFlat) {
+  const Analysed a = analyse(test::plane(1.f, {.n = 5000, .seed = 5}));
+  const Curvature& c = a.surface.curvature;
+  const float side = a.cloud.normals[0].z() > 0 ? 1.f : -1.f;
+  for (std::size_t i = 0; i < a.cloud.size(); ++i) {
+    ASSERT_LT(std::abs(c.k1[i]), 1e-3f) << i;
+    ASSERT_LT(std::abs(c.k2[i]), 1e-3f) << i;
+    ASSERT_GT(side * a.cloud.normals[i].z(), 0.9999f) << i;  // one consistent side
+  }
+}
+
+TEST(Curvature, SaddleAtTheOrigin) {
+  const Analysed a = analyse(test::saddle(0.5f, {.n = 20000, .seed = 9}));
+  std::size_t origin = 0;
+  for (std::size_t i = 0; i < a.cloud.size(); ++i)
+    if (a.cloud.positions[i].norm() < a.cloud.positions[origin].norm()) origin = i;
+  ASSERT_LT(a.cloud.positions[origin].norm(), 0.02f);
+  const Curvature& c = a.surface.curvature;
+  EXPECT_NEAR(c.k1[origin], 2.f, 0.1f);
+  EXPECT_NEAR(c.k2[origin], -2.f, 0.1f);
+  // z = x² − y² bends towards +z along x and away from it along y. Convex (away from the normal) is positive, so
+  // with the normal on the +z side k1 = +2 runs along y; with it on the −z side, along x.
+  const Vec3f expected_dir1 = a.cloud.normals[origin].z() > 0 ? Vec3f::UnitY() : Vec3f::UnitX();
+  EXPECT_GT(std::abs(c.dir1[origin].dot(expected_dir1)), 0.99f);
+  EXPECT_NEAR(c.dir2[origin].dot(a.cloud.normals[origin].cross(c.dir1[origin])), 1.f, 1e-5f);
+  EXPECT_NEAR(c.gaussian(origin), -4.f, 0.4f);
+  EXPECT_NEAR(c.mean(origin), 0.f, 0.1f);
+}
+
+TEST(Curvature, TorusNormalsAllOutward) {
+  const Analysed a = analyse(test::torus(1.f, 0.3f, {.n = 20000, .seed = 13}));
+  for (std::size_t i = 0; i < a.cloud.size(); ++i) ASSERT_GT(a.cloud.normals[i].dot(a.truth[i]), 0.f) << i;
+  EXPECT_EQ(a.surface.components, 1u);
+}
+
+TEST(Curvature, TorusOutwardByFarthestPointRuleToo) {
+  SurfaceOptions options;
+  options.orientation.outward = OutwardRule::FarthestPoint;
+  const Analysed a = analyse(test::torus(1.f, 0.3f, {.n = 5000, .seed = 17}), options);
+  for (std::size_t i = 0; i < a.cloud.size(); ++i) ASSERT_GT(a.cloud.normals[i].dot(a.truth[i]), 0.f) << i;
+}
+
+TEST(Curvature, ExplicitFitSizeIsUsed) {
+  PointCloud cloud = test::sphere(1.f, {.n = 3000, .seed = 2});
+  const neighbourhood::KdTree tree(cloud.positions);
+  const auto nb = neighbourhood::compute_neighbourhoods(tree, cloud.positions, {.k = 12});
+  const Curvature small = estimate_curvature(cloud.positions, cloud.normals, nb, {.k = 8});
+  const Curvature large = estimate_curvature(cloud.positions, cloud.normals, nb, tree, {.k = 40});
+  EXPECT_EQ(small.fit_neighbours, 8u);
+  EXPECT_EQ(large.fit_neighbours, 40u);
+  for (std::size_t i = 0; i < cloud.size(); ++i) ASSERT_NEAR(large.k1[i], 1.f, 0.05f) << i;
+}
+
 }  // namespace
 }  // namespace pcsketch::differential
