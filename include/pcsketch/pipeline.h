@@ -1,0 +1,115 @@
+#pragma once
+// The whole pipeline: a raw point cloud in, a Drawing of one view out (paper Fig. 2). Split in two so that a second
+// view of the same cloud reuses every view-independent result: prepare() once, draw_view() per view.
+
+#include <optional>
+#include <string>
+#include <nlohmann/json_fwd.hpp>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "pcsketch/core/drawing.h"
+#include "pcsketch/core/point_cloud.h"
+#include "pcsketch/core/report.h"
+#include "pcsketch/differential/surface.h"
+#include "pcsketch/features/ridge_valley_lines.h"
+#include "pcsketch/render/options.h"
+#include "pcsketch/stylize/thickness.h"
+#include "pcsketch/view/camera.h"
+#include "pcsketch/view/surface_scene.h"
+#include "pcsketch/view/view.h"
+
+namespace pcsketch {
+
+/// Which lines a drawing shows (the columns of the paper's Fig. 19 switch them on one by one).
+struct LineSelection {
+  bool contours = true;  ///< outline and interior occluding contours
+  bool ridges = true;
+  bool valleys = true;
+  bool hatching = true;  ///< shadow hatching and shade regions (paper §VI)
+};
+
+/// Every option of every stage, so that one struct (and the CLI flags bound to its fields) reproduces a drawing.
+/// Defaults are relative to the cloud (lengths in units of the mean spacing h, widths in output pixels).
+struct DrawOptions {
+  differential::SurfaceOptions surface;        ///< neighbourhoods, normals, curvature (view-independent)
+  features::RidgeValleyOptions features;       ///< ridge/valley detection (α), tracing (r), joining (β)
+  view::SurfaceSceneOptions scene;             ///< the cloud as oriented discs for ray casting
+  view::CameraOptions camera;                  ///< default: the paper's orthographic view along +z, 1024 × 1024 px
+  view::ViewOptions view;                      ///< contours (z_max, …) and visibility
+  stylize::ThicknessOptions thickness;         ///< ρ_min, ρ_max, cofi, depth/angle/brush models
+  render::RenderOptions render;                ///< hidden lines, plotter mode, page size (used by the writers)
+  LineSelection lines;                         ///< which kinds of line are drawn
+  /// Clouds with fewer points than this give an empty drawing and a warning instead of an analysis: a surface
+  /// needs a neighbourhood (k) per point. 3 is the least a plane needs; smaller clouds cannot be drawn.
+  std::size_t min_points = 3;
+  ProgressFn progress;  ///< optional: stage name and fraction; false cancels (pcsketch::Cancelled)
+
+  /// Every option, for Drawing::parameters.
+  nlohmann::json to_json() const;
+};
+
+/// Seconds per stage. The paper's Table 2 rows are listed by table_rows(); the other fields are our finer split.
+struct Timings {
+  double read = 0;                    ///< reading the file (filled by the caller that read it)
+  double reorder = 0;                 ///< spatial reordering
+  double neighbourhoods = 0;          ///< kd-tree and k-NN lists
+  double normals = 0;                 ///< PCA normals and orientation
+  double curvature = 0;               ///< quadric fit
+  double ridge_valley_points = 0;     ///< Table 2 "ridge-valley points extraction" (detection)
+  double ridge_valley_connection = 0; ///< Table 2 "ridge-valley points connection" (tracing + joining)
+  double scene = 0;                   ///< building the oriented-disc scene
+  double contour_points = 0;          ///< Table 2 "contour points extraction"
+  double contour_connection = 0;      ///< Table 2 "contour line connection"
+  double visibility = 0;              ///< ray casting of every line
+  double shadows = 0;                 ///< shadow regions and hatching
+  double drawing = 0;                 ///< Table 2 "drawing": stroke thickness and writing the outputs
+  double total() const;
+
+  /// The paper's Table 2 rows, in its order, then "total": (name, seconds).
+  std::vector<std::pair<std::string_view, double>> table_rows() const;
+  /// Every row in pipeline order (the Table 2 rows under the paper's names among ours), then "total".
+  std::vector<std::pair<std::string_view, double>> all_rows() const;
+  Timings& operator+=(const Timings& other);
+};
+
+/// Everything view-independent, computed once per cloud.
+struct Prepared {
+  PointCloud cloud;                      ///< reordered, with oriented normals
+  differential::Surface surface;         ///< neighbourhoods, spacing h, curvature
+  features::RidgeValleyLines features;   ///< ridge and valley lines
+  std::optional<view::SurfaceScene> scene;  ///< absent when the cloud was too small to analyse
+  Timings timings;
+  Warnings warnings;
+  bool analysed() const { return scene.has_value(); }
+};
+
+/// Analyses `cloud` (neighbourhoods, normals, curvature), extracts ridge and valley lines and builds the ray-casting
+/// scene. A cloud too small or too degenerate to analyse (fewer than `min_points`, fewer than 3 distinct points)
+/// gives a Prepared without analysis and a warning: draw_view then returns an empty drawing.
+/// @throws pcsketch::Error for options out of range; pcsketch::Cancelled if the progress callback asks to stop.
+Prepared prepare(PointCloud cloud, const DrawOptions& options = {});
+
+/// A drawing of one view, with what it cost.
+struct DrawResult {
+  Drawing drawing;
+  Timings timings;  ///< this view's stages only (prepare()'s are in Prepared::timings)
+  Warnings warnings;
+};
+
+/// Draws `prepared` as seen by `camera`: contours, visibility of every line, stroke thickness, shadow hatching.
+/// `options.camera` is ignored (the camera argument replaces it); the drawing's `parameters` record every option.
+DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera, const DrawOptions& options = {});
+
+/// prepare() then draw_view() with options.camera. Timings and warnings of both steps.
+DrawResult draw(PointCloud cloud, const DrawOptions& options = {});
+
+/// The paper's Fig. 19 columns for one view: (b) contours, (c) ridge-valley lines, (d) both fused (constant width),
+/// (e) with thickness, (f) with shadow. Each pair is (file stem such as "b_contours", drawing). The view is computed
+/// once and styled five times.
+std::vector<std::pair<std::string, Drawing>> stage_drawings(const Prepared& prepared,
+                                                            const view::CameraOptions& camera,
+                                                            const DrawOptions& options = {});
+
+}  // namespace pcsketch

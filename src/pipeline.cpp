@@ -1,0 +1,258 @@
+#include "pcsketch/pipeline.h"
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+
+#include "pcsketch/core/error.h"
+#include "pcsketch/stylize/thickness.h"
+
+namespace pcsketch {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+nlohmann::json vec_json(const Vec3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+nlohmann::json camera_options_json(const view::CameraOptions& c) {
+  nlohmann::json j = {{"projection", c.projection == view::Projection::Orthographic ? "orthographic" : "perspective"},
+                      {"direction", vec_json(c.direction)},
+                      {"up", vec_json(c.up)},
+                      {"fov_deg", c.fov_deg},
+                      {"width", c.width},
+                      {"height", c.height},
+                      {"margin", c.margin}};
+  j["azimuth_deg"] = c.azimuth_deg ? nlohmann::json(*c.azimuth_deg) : nlohmann::json(nullptr);
+  j["elevation_deg"] = c.elevation_deg ? nlohmann::json(*c.elevation_deg) : nlohmann::json(nullptr);
+  j["eye"] = c.eye ? vec_json(*c.eye) : nlohmann::json(nullptr);
+  j["target"] = c.target ? vec_json(*c.target) : nlohmann::json(nullptr);
+  return j;
+}
+
+nlohmann::json surface_options_json(const differential::SurfaceOptions& s) {
+  return {{"neighbours_k", s.neighbourhood.k},
+          {"normals_k", s.normals.k},
+          {"curvature_k", s.curvature.k},
+          {"recompute_normals", s.recompute_normals},
+          {"orient_file_normals", s.orient_file_normals},
+          {"reorder", s.reorder}};
+}
+
+/// The view's lines as strokes, keeping only the kinds `selection` asks for.
+std::vector<Stroke> line_strokes(const view::ViewResult& view, const LineSelection& selection,
+                                 const stylize::ThicknessOptions& thickness) {
+  std::vector<Polyline> lines;
+  std::vector<std::vector<std::uint8_t>> visible;
+  for (const view::ViewLine& v : view.lines) {
+    const LineKind kind = v.line.kind;
+    const bool wanted = (kind == LineKind::Contour && selection.contours) ||
+                        (kind == LineKind::Ridge && selection.ridges) || (kind == LineKind::Valley && selection.valleys);
+    if (!wanted) continue;
+    lines.push_back(v.line);
+    visible.push_back(v.visible);
+  }
+  return stylize::make_strokes(lines, view.camera, visible, thickness).strokes;
+}
+
+/// An empty drawing of the right size and camera (a cloud that could not be analysed).
+Drawing empty_drawing(const view::Camera& camera, const Vec3d& origin, const nlohmann::json& parameters) {
+  Drawing d;
+  d.width = camera.width;
+  d.height = camera.height;
+  d.origin = origin;
+  d.camera = camera.to_json();
+  d.parameters = parameters;
+  return d;
+}
+
+/// The recorded parameters: every option plus the values the relative defaults resolved to on this cloud.
+nlohmann::json parameters_json(const Prepared& prepared, const DrawOptions& options,
+                               const view::CameraOptions& camera) {
+  nlohmann::json j = options.to_json();
+  j["camera"] = camera_options_json(camera);
+  j["resolved"] = {{"points", prepared.cloud.size()},
+                   {"spacing_h", prepared.surface.spacing},
+                   {"tracing_radius_r", prepared.features.radius},
+                   {"ridge_threshold", prepared.features.detection.ridge_threshold},
+                   {"valley_threshold", prepared.features.detection.valley_threshold}};
+  return j;
+}
+
+struct StyleRequest {
+  LineSelection lines;
+  stylize::ThicknessOptions thickness;
+};
+
+Drawing style(const Prepared& prepared, const view::ViewResult& view, const StyleRequest& request,
+              const nlohmann::json& parameters) {
+  Drawing d = empty_drawing(view.camera, prepared.cloud.origin, parameters);
+  d.strokes = line_strokes(view, request.lines, request.thickness);
+  return d;
+}
+
+view::ViewResult compute_view(const Prepared& prepared, const view::Camera& camera, const DrawOptions& options,
+                              Timings& timings, Warnings& warnings) {
+  view::ViewResult v = view::compute_view(prepared.cloud, prepared.surface, *prepared.scene,
+                                          prepared.features.lines, camera, options.view);
+  timings.contour_points += v.timings.contour_points;
+  timings.contour_connection += v.timings.contour_connection;
+  timings.visibility += v.timings.visibility;
+  warnings.insert(warnings.end(), v.warnings.begin(), v.warnings.end());
+  return v;
+}
+
+}  // namespace
+
+double Timings::total() const {
+  return read + reorder + neighbourhoods + normals + curvature + ridge_valley_points + ridge_valley_connection +
+         scene + contour_points + contour_connection + visibility + shadows + drawing;
+}
+
+std::vector<std::pair<std::string_view, double>> Timings::table_rows() const {
+  return {{"ridge-valley points extraction", ridge_valley_points},
+          {"ridge-valley points connection", ridge_valley_connection},
+          {"contour points extraction", contour_points},
+          {"contour line connection", contour_connection},
+          {"drawing", drawing},
+          {"total", total()}};
+}
+
+std::vector<std::pair<std::string_view, double>> Timings::all_rows() const {
+  return {{"read", read},
+          {"reorder", reorder},
+          {"neighbourhoods", neighbourhoods},
+          {"normals", normals},
+          {"curvature", curvature},
+          {"ridge-valley points extraction", ridge_valley_points},
+          {"ridge-valley points connection", ridge_valley_connection},
+          {"scene", scene},
+          {"contour points extraction", contour_points},
+          {"contour line connection", contour_connection},
+          {"visibility", visibility},
+          {"shadows", shadows},
+          {"drawing", drawing},
+          {"total", total()}};
+}
+
+Timings& Timings::operator+=(const Timings& o) {
+  read += o.read;
+  reorder += o.reorder;
+  neighbourhoods += o.neighbourhoods;
+  normals += o.normals;
+  curvature += o.curvature;
+  ridge_valley_points += o.ridge_valley_points;
+  ridge_valley_connection += o.ridge_valley_connection;
+  scene += o.scene;
+  contour_points += o.contour_points;
+  contour_connection += o.contour_connection;
+  visibility += o.visibility;
+  shadows += o.shadows;
+  drawing += o.drawing;
+  return *this;
+}
+
+nlohmann::json DrawOptions::to_json() const {
+  return {{"surface", surface_options_json(surface)},
+          {"features", features::to_json(features)},
+          {"scene", {{"disc_radius_factor", scene.disc_radius_factor}}},
+          {"camera", camera_options_json(camera)},
+          {"view", view.to_json()},
+          {"thickness", thickness.to_json()},
+          {"render", render.to_json()},
+          {"lines",
+           {{"contours", lines.contours}, {"ridges", lines.ridges}, {"valleys", lines.valleys},
+            {"hatching", lines.hatching}}},
+          {"min_points", min_points}};
+}
+
+Prepared prepare(PointCloud cloud, const DrawOptions& options) {
+  Prepared p;
+  p.cloud = std::move(cloud);
+  if (p.cloud.size() < std::max<std::size_t>(options.min_points, 3)) {
+    p.warnings.push_back("the cloud has " + std::to_string(p.cloud.size()) +
+                         " points, too few to analyse: the drawing is empty");
+    return p;
+  }
+  differential::SurfaceOptions surface_options = options.surface;
+  if (!surface_options.progress) surface_options.progress = options.progress;
+  try {
+    p.surface = differential::analyse_surface(p.cloud, surface_options);
+  } catch (const Error& e) {
+    // analyse_surface rejects clouds without 3 distinct points: nothing to draw, but not an error of the input.
+    p.warnings.push_back(std::string("cannot analyse the cloud (") + e.what() + "): the drawing is empty");
+    return p;
+  }
+  const differential::SurfaceTimings& st = p.surface.timings;
+  p.timings.reorder = st.reorder;
+  p.timings.neighbourhoods = st.kd_tree + st.neighbourhoods;
+  p.timings.normals = st.normals + st.orientation;
+  p.timings.curvature = st.curvature;
+  p.warnings.insert(p.warnings.end(), p.surface.warnings.begin(), p.surface.warnings.end());
+
+  p.features = features::extract_ridge_valley_lines(p.cloud, p.surface, options.features);
+  p.timings.ridge_valley_points = p.features.timings.detection;
+  p.timings.ridge_valley_connection = p.features.timings.tracing + p.features.timings.joining;
+  p.warnings.insert(p.warnings.end(), p.features.warnings.begin(), p.features.warnings.end());
+
+  const auto start = Clock::now();
+  p.scene.emplace(view::build_surface_scene(p.cloud, p.surface, options.scene));
+  p.timings.scene = seconds_since(start);
+  return p;
+}
+
+DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera_options,
+                     const DrawOptions& options) {
+  DrawResult result;
+  const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera_options);
+  const nlohmann::json parameters = parameters_json(prepared, options, camera_options);
+  if (!prepared.analysed()) {
+    result.drawing = empty_drawing(camera, prepared.cloud.origin, parameters);
+    return result;
+  }
+  const view::ViewResult v = compute_view(prepared, camera, options, result.timings, result.warnings);
+  const auto start = Clock::now();
+  result.drawing = style(prepared, v, {options.lines, options.thickness}, parameters);
+  result.timings.drawing = seconds_since(start);
+  return result;
+}
+
+DrawResult draw(PointCloud cloud, const DrawOptions& options) {
+  const Prepared prepared = prepare(std::move(cloud), options);
+  DrawResult result = draw_view(prepared, options.camera, options);
+  result.timings += prepared.timings;
+  result.warnings.insert(result.warnings.begin(), prepared.warnings.begin(), prepared.warnings.end());
+  return result;
+}
+
+std::vector<std::pair<std::string, Drawing>> stage_drawings(const Prepared& prepared,
+                                                            const view::CameraOptions& camera_options,
+                                                            const DrawOptions& options) {
+  const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera_options);
+  const nlohmann::json parameters = parameters_json(prepared, options, camera_options);
+  stylize::ThicknessOptions constant = options.thickness;
+  constant.model = stylize::ThicknessModel::Constant;
+  constant.brush = false;
+  const std::vector<std::pair<std::string, StyleRequest>> columns = {
+      {"b_contours", {{.contours = true, .ridges = false, .valleys = false, .hatching = false}, constant}},
+      {"c_ridges_valleys", {{.contours = false, .ridges = true, .valleys = true, .hatching = false}, constant}},
+      {"d_fused", {{.contours = true, .ridges = true, .valleys = true, .hatching = false}, constant}},
+      {"e_thickness", {{.contours = true, .ridges = true, .valleys = true, .hatching = false}, options.thickness}},
+      {"f_shadow", {{.contours = true, .ridges = true, .valleys = true, .hatching = true}, options.thickness}}};
+  std::vector<std::pair<std::string, Drawing>> out;
+  if (!prepared.analysed()) {
+    for (const auto& column : columns)
+      out.emplace_back(column.first, empty_drawing(camera, prepared.cloud.origin, parameters));
+    return out;
+  }
+  Timings timings;
+  Warnings warnings;
+  const view::ViewResult v = compute_view(prepared, camera, options, timings, warnings);
+  for (const auto& [stem, request] : columns) out.emplace_back(stem, style(prepared, v, request, parameters));
+  return out;
+}
+
+}  // namespace pcsketch
