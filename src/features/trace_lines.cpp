@@ -93,6 +93,23 @@ class KindTracer {
     return Vec3f(solver.eigenvectors().col(2).normalized());
   }
 
+  // Moves `v` across `dir` to the middle of the band: the mean lateral offset of the unused feature points within r
+  // of it and inside the corridor. A window of 2r along the band averages many more points than one step holds.
+  void recentre(Vertex& v, const Vec3f& dir) {
+    tree_.radius(v.position, radius_, hits_, distances_);
+    Vec3f lateral = Vec3f::Zero();
+    int count = 0;
+    for (std::uint32_t j : hits_) {
+      if (used_[j]) continue;
+      const Vec3f offset = points_[j] - v.position;
+      const Vec3f across = offset - offset.dot(dir) * dir;
+      if (across.norm() > corridor_) continue;
+      lateral += across;
+      ++count;
+    }
+    if (count > 0) v.position += lateral / static_cast<float>(count);
+  }
+
   // Feature points of found_ ahead of `centre` along `dir` and inside the corridor, with their advance.
   void ahead(const Vec3f& centre, const Vec3f& dir) {
     ahead_.clear();
@@ -118,7 +135,8 @@ class KindTracer {
       step_set_.clear();
       for (const auto& [j, t] : ahead_)
         if (t >= 0.5f * tmax) step_set_.push_back(j);
-      const Vertex next = make_vertex(step_set_);
+      Vertex next = make_vertex(step_set_);
+      recentre(next, dir);
       const float advance = (next.position - centre).dot(dir);
       if (advance < min_advance) break;
       if (closed && length > 3.f * radius_ && (next.position - start.position).norm() < 0.75f * radius_) {
