@@ -1,0 +1,235 @@
+// Attached-shadow hatching (beyond the paper): the visible surface facing away from the light, hatched in image space.
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "stylize/shadow_detail.h"
+
+namespace pcsketch::stylize::detail {
+
+namespace {
+
+constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
+
+/// The nearest visible surface per image cell: the point whose disc the cell's viewing ray meets first.
+struct ShadingGrid {
+  int w = 0, h = 0;
+  float cell = 1.f;
+  std::vector<std::uint8_t> covered;  ///< w·h
+  std::vector<float> depth;           ///< w·h, depth of the nearest disc along the cell's viewing ray
+  std::vector<float> shade;           ///< w·h, n·l of the nearest disc, smoothed over covered neighbours
+};
+
+/// Rasterises every point's oriented disc (as SurfaceScene sees it) with a z-buffer. Packing (depth bits, index)
+/// into one 64-bit key and keeping the minimum with compare-and-swap gives the same grid for any thread count.
+ShadingGrid splat(const ShadowInput& in, const ShadowOptions& o, const Vec3f& light) {
+  const view::Camera& cam = in.camera;
+  ShadingGrid g;
+  g.cell = o.mask_cell_px;
+  g.w = std::max(1, static_cast<int>(std::ceil(static_cast<float>(cam.width) / g.cell)));
+  g.h = std::max(1, static_cast<int>(std::ceil(static_cast<float>(cam.height) / g.cell)));
+  const std::size_t cells = static_cast<std::size_t>(g.w) * static_cast<std::size_t>(g.h);
+  std::vector<std::atomic<std::uint64_t>> key(cells);
+  for (auto& k : key) k.store(kEmpty, std::memory_order_relaxed);
+
+  const std::size_t n = in.positions.size();
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Vec3f& p = in.positions[i];
+      const Vec3f& nrm = in.normals[i];
+      const Vec3f uvd = cam.project(p);
+      const float radius = o.splat_radius_factor * in.local_spacing[i];
+      if (!(uvd.z() > 0.f) || !nrm.allFinite() || !(radius > 0.f)) continue;
+      const Vec3f ray = cam.ray_direction(p);
+      const float nv = nrm.dot(ray);
+      if (std::abs(nv) < 1e-4f) continue;  // edge-on: covers no area
+      const float upp = cam.units_per_pixel(uvd.z());
+      const float r_px = radius / upp;
+      const int x0 = std::max(0, static_cast<int>(std::floor((uvd.x() - r_px) / g.cell)));
+      const int x1 = std::min(g.w - 1, static_cast<int>(std::floor((uvd.x() + r_px) / g.cell)));
+      const int y0 = std::max(0, static_cast<int>(std::floor((uvd.y() - r_px) / g.cell)));
+      const int y1 = std::min(g.h - 1, static_cast<int>(std::floor((uvd.y() + r_px) / g.cell)));
+      const float ray_depth = ray.dot(cam.forward);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const float du = (static_cast<float>(x) + 0.5f) * g.cell - uvd.x();
+          const float dv = (static_cast<float>(y) + 0.5f) * g.cell - uvd.y();
+          // Offset in the image plane at p's depth, then along the viewing ray onto the disc's plane.
+          const Vec3f delta = (du * cam.right - dv * cam.up) * upp;
+          const float s = -nrm.dot(delta) / nv;
+          if ((delta + s * ray).squaredNorm() > radius * radius) continue;
+          const float d = std::max(uvd.z() + s * ray_depth, 0.f);
+          const std::uint64_t k = (static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(d)) << 32) | i;
+          std::atomic<std::uint64_t>& slot = key[static_cast<std::size_t>(y) * g.w + x];
+          std::uint64_t cur = slot.load(std::memory_order_relaxed);
+          while (k < cur && !slot.compare_exchange_weak(cur, k, std::memory_order_relaxed)) {
+          }
+        }
+    }
+  });
+
+  g.covered.assign(cells, 0);
+  g.depth.assign(cells, 0.f);
+  std::vector<float> raw(cells, 0.f);
+  for (std::size_t c = 0; c < cells; ++c) {
+    const std::uint64_t k = key[c].load(std::memory_order_relaxed);
+    if (k == kEmpty) continue;
+    g.covered[c] = 1;
+    g.depth[c] = std::bit_cast<float>(static_cast<std::uint32_t>(k >> 32));
+    raw[c] = in.normals[static_cast<std::uint32_t>(k & 0xffffffffu)].dot(light);
+  }
+  // Normal noise makes the terminator ragged; a 3×3 mean over covered cells of similar depth smooths it.
+  const float jump = o.depth_jump_factor * in.spacing;
+  g.shade.assign(cells, 0.f);
+  tbb::parallel_for(tbb::blocked_range<int>(0, g.h), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y)
+      for (int x = 0; x < g.w; ++x) {
+        const std::size_t c = static_cast<std::size_t>(y) * g.w + x;
+        if (!g.covered[c]) continue;
+        float sum = 0.f;
+        int count = 0;
+        for (int yy = std::max(0, y - 1); yy <= std::min(g.h - 1, y + 1); ++yy)
+          for (int xx = std::max(0, x - 1); xx <= std::min(g.w - 1, x + 1); ++xx) {
+            const std::size_t q = static_cast<std::size_t>(yy) * g.w + xx;
+            if (g.covered[q] && std::abs(g.depth[q] - g.depth[c]) <= jump) {
+              sum += raw[q];
+              ++count;
+            }
+          }
+        g.shade[c] = sum / static_cast<float>(count);
+      }
+  });
+  return g;
+}
+
+/// A sample of the grid at an image position.
+struct Sample {
+  bool covered = false;
+  float depth = 0.f;
+  float shade = 0.f;
+};
+
+Sample sample(const ShadingGrid& g, const Vec2f& x) {
+  Sample s;
+  const int cx = static_cast<int>(std::floor(x.x() / g.cell)), cy = static_cast<int>(std::floor(x.y() / g.cell));
+  if (cx < 0 || cy < 0 || cx >= g.w || cy >= g.h) return s;
+  const std::size_t c = static_cast<std::size_t>(cy) * g.w + cx;
+  if (!g.covered[c]) return s;
+  s.covered = true;
+  s.depth = g.depth[c];
+  // Bilinear n·l over the covered cells among the four around x, so that hatch ends can be placed between cells.
+  const float fx = x.x() / g.cell - 0.5f, fy = x.y() / g.cell - 0.5f;
+  const int ix = static_cast<int>(std::floor(fx)), iy = static_cast<int>(std::floor(fy));
+  const float ax = fx - static_cast<float>(ix), ay = fy - static_cast<float>(iy);
+  float sum = 0.f, weight = 0.f;
+  for (int dy = 0; dy <= 1; ++dy)
+    for (int dx = 0; dx <= 1; ++dx) {
+      const int xx = ix + dx, yy = iy + dy;
+      if (xx < 0 || yy < 0 || xx >= g.w || yy >= g.h) continue;
+      const std::size_t q = static_cast<std::size_t>(yy) * g.w + xx;
+      if (!g.covered[q]) continue;
+      const float wgt = (dx ? ax : 1.f - ax) * (dy ? ay : 1.f - ay);
+      sum += wgt * g.shade[q];
+      weight += wgt;
+    }
+  s.shade = weight > 0.f ? sum / weight : g.shade[c];
+  return s;
+}
+
+/// The 3D point seen at image position x at depth `depth` (inverse of Camera::project).
+Vec3f unproject(const view::Camera& cam, const Vec2f& x, float depth) {
+  const float a = (x.x() - cam.principal.x()) / cam.scale, b = (cam.principal.y() - x.y()) / cam.scale;
+  const float f = cam.projection == view::Projection::Perspective ? depth : 1.f;
+  return cam.eye + depth * cam.forward + f * (a * cam.right + b * cam.up);
+}
+
+/// Hatch pieces along one image line x(t) = base + t·dir, t in [t0, t1], where the shade exceeds `threshold`.
+void hatch_line(const ShadingGrid& g, const view::Camera& cam, const Vec2f& base, const Vec2f& dir, float t0, float t1,
+                float threshold, float max_jump, const ShadowOptions& o, float grey, std::vector<Stroke>& out) {
+  const float step = 0.5f * g.cell;
+  bool in_run = false;
+  float run_start = 0.f, run_end = 0.f, start_depth = 0.f, end_depth = 0.f;
+  Sample prev;
+  float prev_t = t0;
+  auto flush = [&] {
+    if (in_run && run_end - run_start >= o.min_hatch_px) {
+      const Vec2f a = base + run_start * dir, b = base + run_end * dir;
+      out.push_back(hatch_stroke({unproject(cam, a, start_depth), unproject(cam, b, end_depth)}, {a, b}, false,
+                                 o.attached_width_px, grey));
+    }
+    in_run = false;
+  };
+  for (float t = t0; t <= t1; t += step) {
+    const Sample s = sample(g, base + t * dir);
+    const bool inside = s.covered && s.shade > threshold;
+    if (in_run && inside && std::abs(s.depth - prev.depth) > max_jump) flush();  // another surface begins
+    if (inside && !in_run) {
+      in_run = true;
+      run_start = t;
+      // Entering across the terminator (both samples on the surface): place the start where n·l crosses.
+      if (prev.covered && t > t0 && std::abs(s.depth - prev.depth) <= max_jump)
+        run_start = prev_t + (threshold - prev.shade) / (s.shade - prev.shade) * (t - prev_t);
+      start_depth = s.depth;
+    }
+    if (inside) {
+      run_end = t;
+      end_depth = s.depth;
+    } else if (in_run) {
+      if (s.covered && std::abs(s.depth - prev.depth) <= max_jump)
+        run_end = prev_t + (threshold - prev.shade) / (s.shade - prev.shade) * (t - prev_t);
+      flush();
+    }
+    prev = s;
+    prev_t = t;
+  }
+  flush();
+}
+
+}  // namespace
+
+std::vector<Stroke> attached_hatching(const ShadowInput& in, const ShadowOptions& o, const Vec3f& light) {
+  std::vector<Stroke> out;
+  if (in.positions.empty() || o.attached_levels.empty()) return out;
+  const ShadingGrid g = splat(in, o, light);
+  const view::Camera& cam = in.camera;
+  const float W = static_cast<float>(cam.width), H = static_cast<float>(cam.height);
+  const float max_jump = o.depth_jump_factor * in.spacing;
+  const std::size_t levels = o.attached_levels.size();
+  for (std::size_t level = 0; level < levels; ++level) {
+    const float theta = (o.hatch_angle_deg + static_cast<float>(level) * o.cross_angle_deg) * 0.017453292519943295f;
+    const Vec2f dir(std::cos(theta), -std::sin(theta));  // v points down: counter-clockwise as seen
+    const Vec2f normal(-dir.y(), dir.x());
+    // Lines m·x = j·spacing covering the image; the parameter t runs along dir between the image's extremes.
+    float o_lo = std::numeric_limits<float>::max(), o_hi = std::numeric_limits<float>::lowest();
+    float t_lo = o_lo, t_hi = o_hi;
+    for (const Vec2f& c : {Vec2f(0, 0), Vec2f(W, 0), Vec2f(0, H), Vec2f(W, H)}) {
+      o_lo = std::min(o_lo, normal.dot(c));
+      o_hi = std::max(o_hi, normal.dot(c));
+      t_lo = std::min(t_lo, dir.dot(c));
+      t_hi = std::max(t_hi, dir.dot(c));
+    }
+    const long j0 = static_cast<long>(std::ceil(o_lo / o.hatch_spacing_px));
+    const long j1 = static_cast<long>(std::floor(o_hi / o.hatch_spacing_px));
+    const std::size_t count = j1 >= j0 ? static_cast<std::size_t>(j1 - j0 + 1) : 0;
+    const float grey = graded(o.attached_grey_light, o.attached_grey_dark, level, levels);
+    std::vector<std::vector<Stroke>> per_line(count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) {
+        const Vec2f base = normal * (static_cast<float>(j0 + static_cast<long>(k)) * o.hatch_spacing_px);
+        hatch_line(g, cam, base, dir, t_lo, t_hi, o.attached_levels[level], max_jump, o, grey, per_line[k]);
+      }
+    });
+    for (auto& strokes : per_line)
+      for (Stroke& s : strokes) out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace pcsketch::stylize::detail
