@@ -250,7 +250,7 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
   ContourOptions walk_options = o;
   walk_options.trace_radius_factor = o.interior_trace_radius_factor;
   Walker<3> walker{rim, grid, scale, walk_options, std::vector<char>(rim.size(), 0)};
-  const float z_max = o.z_max_factor * h;
+  const float z_max = o.interior_z_max_factor * h;
   const float cos_turn = std::cos(o.max_turn_deg * kDegToRad);
 
   auto choose = [&](std::uint32_t cur, const Vec3f& d, float r, std::uint32_t closing) -> std::int64_t {
@@ -329,7 +329,8 @@ nlohmann::json ContourOptions::to_json() const {
           {"interior", interior},
           {"interior_neighbours", interior_neighbours},
           {"interior_dedupe_factor", interior_dedupe_factor},
-          {"interior_trace_radius_factor", interior_trace_radius_factor}};
+          {"interior_trace_radius_factor", interior_trace_radius_factor},
+          {"interior_z_max_factor", interior_z_max_factor}};
 }
 
 ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
@@ -420,8 +421,9 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
   }
 
   if (o.interior && n > 0) {
-    // f = n·v < 0 faces the viewer; a rim sample sits at the zero crossings between a front-facing point and its
-    // back-facing neighbours (averaged), i.e. on the occluding contour generator.
+    // f = n·v < 0 faces the viewer; a rim sample sits at the zero crossings between a point and its neighbours
+    // facing the other way (averaged), i.e. on the occluding contour generator. Points on both sides make samples:
+    // one side alone leaves gaps of about 4h along the generator on random samplings.
     std::vector<float> facing(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
       for (std::size_t i = range.begin(); i != range.end(); ++i)
@@ -433,14 +435,14 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
         const float fi = facing[i];
-        if (!(fi < 0) || cp.spacing_px[i] <= 0) continue;
+        if (fi == 0 || !std::isfinite(fi) || cp.spacing_px[i] <= 0) continue;
         Vec3f sum = Vec3f::Zero();
         int count = 0;
         const auto nb = neighbourhoods.of(i);
         for (std::size_t a = 0; a < m; ++a) {
           const std::uint32_t j = nb[a];
           const float fj = facing[j];
-          if (!(fj > 0)) continue;
+          if (!(fi * fj < 0)) continue;
           const float t = fi / (fi - fj);
           sum += positions[i] + t * (positions[j] - positions[i]);
           ++count;

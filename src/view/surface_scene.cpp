@@ -121,7 +121,9 @@ std::optional<SurfaceHit> SurfaceScene::intersect(const Vec3f& origin, const Vec
   rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &context, &rayhit);
   if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-  return SurfaceHit{rayhit.ray.tfar, rayhit.hit.primID};
+  const Vec3f normal(rayhit.hit.Ng_x, rayhit.hit.Ng_y, rayhit.hit.Ng_z);
+  const float len = normal.norm();
+  return SurfaceHit{rayhit.ray.tfar, rayhit.hit.primID, len > 0 ? Vec3f(normal / len) : Vec3f::UnitZ()};
 }
 
 bool SurfaceScene::occluded(const Vec3f& origin, const Vec3f& direction, float t_near, float t_far) const {

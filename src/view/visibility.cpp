@@ -13,8 +13,9 @@ namespace pcsketch::view {
 
 namespace {
 
-/// Whether p is seen: no disc between it (past the self offset) and the viewer.
-bool sees(const SurfaceScene& scene, const Camera& camera, const Vec3f& p, float offset) {
+/// Whether p is seen: no disc between it (past the self offset) and the viewer, grazing discs near p skipped.
+bool sees(const SurfaceScene& scene, const Camera& camera, const Vec3f& p, float offset, float grazing_range,
+          const VisibilityOptions& o) {
   const Vec3f to_viewer = -camera.ray_direction(p);
   float t_far = std::numeric_limits<float>::infinity();
   if (camera.projection == Projection::Perspective) {
@@ -22,7 +23,16 @@ bool sees(const SurfaceScene& scene, const Camera& camera, const Vec3f& p, float
     if (!(depth > 0)) return false;
     t_far = (camera.eye - p).norm();
   }
-  return !scene.occluded(p, to_viewer, offset, t_far);
+  if (o.grazing_cos <= 0) return !scene.occluded(p, to_viewer, offset, t_far);
+  float t_near = offset;
+  // Bounded: past a few grazing discs the ray is running along the surface, which then counts as seen.
+  for (int step = 0; step < 32; ++step) {
+    const auto hit = scene.intersect(p, to_viewer, t_near, t_far);
+    if (!hit) return true;
+    if (hit->t > grazing_range || std::abs(hit->normal.dot(to_viewer)) >= o.grazing_cos) return false;
+    t_near = std::nextafter(hit->t, std::numeric_limits<float>::infinity()) + 1e-3f * offset;
+  }
+  return true;
 }
 
 /// Majority vote over a centred window (wrapping on closed lines, shrinking at open ends).
@@ -82,6 +92,8 @@ void build_runs(ViewLine& vl, const Camera& camera) {
 
 nlohmann::json VisibilityOptions::to_json() const {
   return {{"self_offset_factor", self_offset_factor},
+          {"grazing_cos", grazing_cos},
+          {"grazing_range_factor", grazing_range_factor},
           {"smoothing_window", smoothing_window},
           {"transition_refinement", transition_refinement}};
 }
@@ -103,6 +115,7 @@ std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const 
   if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("visibility: the mean spacing h must be positive");
   if (o.smoothing_window % 2 == 0) throw Error("visibility: the smoothing window must be odd");
   const float offset = o.self_offset_factor * spacing;
+  const float grazing_range = o.grazing_range_factor * spacing;
   std::vector<ViewLine> out(lines.size());
   // Lines vary from a handful to thousands of vertices; a grain of one line keeps both cores busy.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -114,7 +127,7 @@ std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const 
       std::vector<std::uint8_t> raw(n);
       for (std::size_t i = 0; i < n; ++i) {
         vl.projected[i] = camera.project(vl.line.points[i]);
-        raw[i] = sees(scene, camera, vl.line.points[i], offset) ? 1 : 0;
+        raw[i] = sees(scene, camera, vl.line.points[i], offset, grazing_range, o) ? 1 : 0;
       }
       vl.visible = smooth_flags(raw, o.smoothing_window, vl.line.closed);
       const std::size_t segments = n == 0 ? 0 : (vl.line.closed && n > 2 ? n : n - 1);
@@ -127,7 +140,7 @@ std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const 
         const Vec3f pa = vl.line.points[s], pb = vl.line.points[b];
         for (int it = 0; it < o.transition_refinement; ++it) {
           const float mid = 0.5f * (lo + hi);
-          const bool v = sees(scene, camera, pa + mid * (pb - pa), offset);
+          const bool v = sees(scene, camera, pa + mid * (pb - pa), offset, grazing_range, o);
           (v == (vl.visible[s] != 0) ? lo : hi) = mid;
         }
         vl.split[s] = 0.5f * (lo + hi);

@@ -51,8 +51,7 @@ struct ContourOptions {
   OutlineConnection connection = OutlineConnection::Outermost;
   /// Radius within which the next point of a line is searched, in units of h_px (paper: the neighbourhood of k).
   float trace_radius_factor = 3.0f;
-  /// Paper's z_max: largest distance of the next point from the direction line, in units of h_px (DirectionGuided,
-  /// and the interior tracing where it is in units of h).
+  /// Paper's z_max: largest distance of the next point from the direction line, in units of h_px (DirectionGuided).
   float z_max_factor = 1.0f;
   /// Largest turn between consecutive steps, degrees; rejects backtracking (the spikes of interference points).
   float max_turn_deg = 120.0f;
@@ -62,8 +61,9 @@ struct ContourOptions {
   /// The direction n_p = p_front − p is taken over this many previous steps: smooths the heading on noisy bands.
   std::size_t heading_steps = 3;
   /// Lines shorter than this (units of h, measured in 3D for interior contours and in h_px for the outline) are
-  /// dropped: isolated boundary points inside the outline (sparse spots) make short fragments.
-  float min_length_factor = 8.0f;
+  /// dropped: stray boundary points and rim samples make short fragments. 4 keeps the short visible pieces of
+  /// interior contours that end at cusps.
+  float min_length_factor = 4.0f;
 
   // --- interior contours (beyond the paper) ---
   /// Add occluding contours where the normal turns from facing the viewer to facing away (n·v changes sign between
@@ -73,8 +73,13 @@ struct ContourOptions {
   std::size_t interior_neighbours = 8;
   /// Rim samples within this 3D distance of an outline vertex belong to the outline already, in units of h.
   float interior_dedupe_factor = 3.0f;
-  /// 3D search radius when chaining rim samples, in units of h.
-  float interior_trace_radius_factor = 3.0f;
+  /// 3D search radius when chaining rim samples, in units of h. Rim samples lie about 2h apart along the
+  /// generator on random samplings (h is the mean nearest-neighbour distance, half the typical spacing).
+  float interior_trace_radius_factor = 6.0f;
+  /// Paper's z_max for the interior tracing: largest distance of the next rim sample from the direction line, in
+  /// units of h. The rim samples scatter about h around the generator on both sides; 2.5 keeps chains unbroken
+  /// (mesh ground truth: recall +5% over 1.5 at unchanged precision).
+  float interior_z_max_factor = 2.5f;
 
   nlohmann::json to_json() const;
 };
@@ -86,7 +91,7 @@ struct ContourPoints {
   std::vector<std::uint32_t> boundary; ///< #B: indices of the outline's boundary points, ascending
   std::vector<Vec2f> outward;          ///< #B: unit image direction of each boundary point's largest empty gap
   std::vector<Vec3f> rim;              ///< #R: interior rim samples (zero crossings of n·v), relative coordinates
-  std::vector<std::uint32_t> rim_point;  ///< #R: the front-facing cloud point each rim sample was made from
+  std::vector<std::uint32_t> rim_point;  ///< #R: the cloud point each rim sample was made from
 };
 
 /// Projects the cloud and finds the outline's boundary points (paper §IV.B) and, when `options.interior`, the rim
@@ -105,7 +110,7 @@ struct ContourLines {
   /// Outline of the projection: vertices are cloud points (point_index set), closed when the outline closes. Seen
   /// by construction: nothing projects beyond the outline of everything.
   std::vector<Polyline> outline;
-  /// Interior occluding contours: vertices are rim samples, point_index the front-facing point each came from.
+  /// Interior occluding contours: vertices are rim samples, point_index the cloud point each came from.
   /// Partly hidden in general (the far rim of a torus hole); visibility decides.
   std::vector<Polyline> interior;
 };

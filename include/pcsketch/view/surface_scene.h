@@ -22,6 +22,7 @@ struct SurfaceSceneOptions {
 struct SurfaceHit {
   float t = 0;              ///< distance along the (unit) ray direction
   std::uint32_t point = 0;  ///< index of the point whose disc was hit
+  Vec3f normal = Vec3f::UnitZ();  ///< unit normal of that disc
 };
 
 /// Each point's local spacing: the distance to its `kth` nearest neighbour (1-based, clamped to the neighbourhood

@@ -23,6 +23,13 @@ struct VisibilityOptions {
   /// parts (an ear, a sheet thinner than 3h) do not hide themselves. Surfaces nearer than that in front of a line
   /// are missed: the price of the rule.
   float self_offset_factor = 3.0f;
+  /// Grazing hits are skipped: a disc hit within grazing_range_factor · h of the vertex whose plane the ray meets
+  /// at |cos| below this (about 14° off its plane) does not occlude. A contour's ray is tangent to the surface and
+  /// grazes the discs of the rim ahead of it, well beyond the self offset; true occluders are crossed, not grazed.
+  /// 0 disables the rule.
+  float grazing_cos = 0.25f;
+  /// Range of the grazing rule, in units of h.
+  float grazing_range_factor = 20.0f;
   /// Per-vertex flags are smoothed by a majority vote over this many consecutive vertices (odd; 1 = off): a single
   /// ray slipping through a gap between discs must not cut a hidden line.
   std::size_t smoothing_window = 3;
