@@ -49,7 +49,9 @@ ShadingGrid splat(const ShadowInput& in, const ShadowOptions& o, const Vec3f& li
       if (!(uvd.z() > 0.f) || !nrm.allFinite() || !(radius > 0.f)) continue;
       const Vec3f ray = cam.ray_direction(p);
       const float nv = nrm.dot(ray);
-      if (std::abs(nv) < 1e-4f) continue;  // edge-on: covers no area
+      // Back-facing discs are never the visible side of an oriented surface; they are seen only through gaps
+      // between front discs, where they would shade lit fronts. Edge-on discs cover no area.
+      if (nv > -1e-4f) continue;
       const float upp = cam.units_per_pixel(uvd.z());
       const float r_px = radius / upp;
       const int x0 = std::max(0, static_cast<int>(std::floor((uvd.x() - r_px) / g.cell)));
@@ -81,9 +83,12 @@ ShadingGrid splat(const ShadowInput& in, const ShadowOptions& o, const Vec3f& li
   for (std::size_t c = 0; c < cells; ++c) {
     const std::uint64_t k = key[c].load(std::memory_order_relaxed);
     if (k == kEmpty) continue;
+    const std::uint32_t i = static_cast<std::uint32_t>(k & 0xffffffffu);
+    // Surfaces seen at a grazing angle are squeezed into thin strips where hatching reads as specks.
+    if (-in.normals[i].dot(cam.ray_direction(in.positions[i])) < o.attached_min_facing) continue;
     g.covered[c] = 1;
     g.depth[c] = std::bit_cast<float>(static_cast<std::uint32_t>(k >> 32));
-    raw[c] = in.normals[static_cast<std::uint32_t>(k & 0xffffffffu)].dot(light);
+    raw[c] = in.normals[i].dot(light);
   }
   // Normal noise makes the terminator ragged; a 3×3 mean over covered cells of similar depth smooths it.
   const float jump = o.depth_jump_factor * in.spacing;

@@ -231,6 +231,7 @@ nlohmann::json ShadowOptions::to_json() const {
           {"mask_cell_px", mask_cell_px},
           {"splat_radius_factor", splat_radius_factor},
           {"depth_jump_factor", depth_jump_factor},
+          {"attached_min_facing", attached_min_facing},
           {"min_hatch_px", min_hatch_px}};
 }
 

@@ -96,7 +96,11 @@ struct ShadowOptions {
   float splat_radius_factor = 1.f;
   /// Hatch lines break where the visible depth jumps by more than this (units of h): another surface begins.
   float depth_jump_factor = 4.f;
-  float min_hatch_px = 4.f;  ///< shorter hatch pieces are dropped (specks)
+  /// Cells whose visible disc faces the viewer less than this (−n·v, v the viewing ray) are not hatched: surfaces
+  /// seen at a grazing angle (beyond about 80°) are thin strips where hatching reads as specks.
+  float attached_min_facing = 0.15f;
+  /// Shorter hatch pieces are dropped: specks on surfaces seen edge-on read as noise. 6 px = one hatch spacing.
+  float min_hatch_px = 6.f;
 
   nlohmann::json to_json() const;
 };
@@ -130,8 +134,8 @@ struct ShadowResult {
 /// inside the object: no shadow); n = p' − p, hatch points p_c = p + k·d·n (eqs. 12–14) kept where nothing hides
 /// them from the viewer, joined along the line into hatch strokes; the blocks between successive hatch lines
 /// (the line itself first) become ShadeRegions whose grey grows away from the line.
-/// Attached mode: the points are splatted as oriented discs into an image grid (nearest surface per cell, its n·l,
-/// lightly smoothed); hatch lines at fixed angle and spacing are clipped to the cells with n·l above each family's
+/// Attached mode: the points are splatted as oriented discs into an image grid (nearest front-facing disc per cell,
+/// its n·l, lightly smoothed); hatch lines at fixed angle and spacing are clipped to the cells with n·l above each family's
 /// threshold, with ends placed by interpolating n·l, and broken at depth jumps.
 /// @throws pcsketch::Error when array sizes disagree or h is not positive while a shadow mode is on.
 ShadowResult shadow_hatching(const ShadowInput& input, const ShadowOptions& options = {});
