@@ -25,6 +25,8 @@ struct ShadingGrid {
   std::vector<std::uint8_t> covered;  ///< w·h
   std::vector<float> depth;           ///< w·h, depth of the nearest disc along the cell's viewing ray
   std::vector<float> shade;           ///< w·h, n·l of the nearest disc, smoothed over covered neighbours
+  /// Distance between samples along a hatch line, px: two per cell, so no cell is skipped.
+  float step() const { return 0.5f * cell; }
 };
 
 /// Rasterises every point's oriented disc (as SurfaceScene sees it) with a z-buffer. Packing (depth bits, index)
@@ -158,7 +160,7 @@ Vec3f unproject(const view::Camera& cam, const Vec2f& x, float depth) {
 /// Hatch pieces along one image line x(t) = base + t·dir, t in [t0, t1], where the shade exceeds `threshold`.
 void hatch_line(const ShadingGrid& g, const view::Camera& cam, const Vec2f& base, const Vec2f& dir, float t0, float t1,
                 float threshold, float max_jump, const ShadowOptions& o, float grey, std::vector<Stroke>& out) {
-  const float step = 0.5f * g.cell;
+  const float step = g.step();
   bool in_run = false;
   float run_start = 0.f, run_end = 0.f, start_depth = 0.f, end_depth = 0.f;
   Sample prev;
@@ -204,22 +206,37 @@ std::vector<Stroke> attached_hatching(const ShadowInput& in, const ShadowOptions
   if (in.positions.empty() || o.attached_levels.empty()) return out;
   const ShadingGrid g = splat(in, o, light);
   const view::Camera& cam = in.camera;
-  const float W = static_cast<float>(cam.width), H = static_cast<float>(cam.height);
+  // Hatch lines only need to cross the bounding box of the hatchable cells.
+  int x_lo = g.w, x_hi = -1, y_lo = g.h, y_hi = -1;
+  for (int y = 0; y < g.h; ++y)
+    for (int x = 0; x < g.w; ++x)
+      if (g.covered[static_cast<std::size_t>(y) * g.w + x]) {
+        x_lo = std::min(x_lo, x);
+        x_hi = std::max(x_hi, x);
+        y_lo = std::min(y_lo, y);
+        y_hi = std::max(y_hi, y);
+      }
+  if (x_hi < 0) return out;
+  const Vec2f box_lo(static_cast<float>(x_lo) * g.cell, static_cast<float>(y_lo) * g.cell);
+  const Vec2f box_hi(static_cast<float>(x_hi + 1) * g.cell, static_cast<float>(y_hi + 1) * g.cell);
   const float max_jump = o.depth_jump_factor * in.spacing;
   const std::size_t levels = o.attached_levels.size();
   for (std::size_t level = 0; level < levels; ++level) {
     const float theta = (o.hatch_angle_deg + static_cast<float>(level) * o.cross_angle_deg) * 0.017453292519943295f;
     const Vec2f dir(std::cos(theta), -std::sin(theta));  // v points down: counter-clockwise as seen
     const Vec2f normal(-dir.y(), dir.x());
-    // Lines m·x = j·spacing covering the image; the parameter t runs along dir between the image's extremes.
+    // Lines m·x = j·spacing (anchored at the image origin, so they do not move with the box) crossing the box; the
+    // parameter t runs along dir between the box's extremes.
     float o_lo = std::numeric_limits<float>::max(), o_hi = std::numeric_limits<float>::lowest();
     float t_lo = o_lo, t_hi = o_hi;
-    for (const Vec2f& c : {Vec2f(0, 0), Vec2f(W, 0), Vec2f(0, H), Vec2f(W, H)}) {
+    for (const Vec2f& c : {box_lo, Vec2f(box_hi.x(), box_lo.y()), Vec2f(box_lo.x(), box_hi.y()), box_hi}) {
       o_lo = std::min(o_lo, normal.dot(c));
       o_hi = std::max(o_hi, normal.dot(c));
       t_lo = std::min(t_lo, dir.dot(c));
       t_hi = std::max(t_hi, dir.dot(c));
     }
+    // Samples at multiples of the step, so the box does not shift them either.
+    t_lo = std::floor(t_lo / g.step()) * g.step();
     const long j0 = static_cast<long>(std::ceil(o_lo / o.hatch_spacing_px));
     const long j1 = static_cast<long>(std::floor(o_hi / o.hatch_spacing_px));
     const std::size_t count = j1 >= j0 ? static_cast<std::size_t>(j1 - j0 + 1) : 0;
