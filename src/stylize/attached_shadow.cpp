@@ -173,7 +173,9 @@ void hatch_line(const ShadingGrid& g, const view::Camera& cam, const Vec2f& base
     }
     in_run = false;
   };
-  for (float t = t0; t <= t1; t += step) {
+  const long samples = static_cast<long>(std::floor((t1 - t0) / step)) + 1;
+  for (long k = 0; k < samples; ++k) {
+    const float t = t0 + static_cast<float>(k) * step;
     const Sample s = sample(g, base + t * dir);
     const bool inside = s.covered && s.shade > threshold;
     if (in_run && inside && std::abs(s.depth - prev.depth) > max_jump) flush();  // another surface begins
@@ -181,7 +183,7 @@ void hatch_line(const ShadingGrid& g, const view::Camera& cam, const Vec2f& base
       in_run = true;
       run_start = t;
       // Entering across the terminator (both samples on the surface): place the start where n·l crosses.
-      if (prev.covered && t > t0 && std::abs(s.depth - prev.depth) <= max_jump)
+      if (prev.covered && k > 0 && std::abs(s.depth - prev.depth) <= max_jump)
         run_start = prev_t + (threshold - prev.shade) / (s.shade - prev.shade) * (t - prev_t);
       start_depth = s.depth;
     }
