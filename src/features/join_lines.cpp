@@ -95,7 +95,8 @@ JoinResult join_lines(std::vector<Polyline> lines, float radius, float spacing, 
     for (std::uint32_t l = 0; l < lines.size(); ++l) {
       if (!alive[l] || lines[l].closed || lines[l].size() < 2) continue;
       for (std::uint8_t side : {std::uint8_t{0}, std::uint8_t{1}}) {
-        const Vec3f tangent = end_tangent(lines[l], side, radius);
+        // Over 2r the lateral wobble of the vertices (up to about h) tilts the tangent by a few degrees only.
+        const Vec3f tangent = end_tangent(lines[l], side, 2.f * radius);
         if (tangent.isZero()) continue;
         ends.push_back({l, side, side == 0 ? lines[l].points.front() : lines[l].points.back(), tangent});
       }

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <numeric>
+#include <numbers>
 
 #include "pcsketch/core/error.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
@@ -21,13 +21,14 @@ struct Vertex {
 // Traces the lines of one kind over the subset of points carrying that label.
 class KindTracer {
  public:
-  KindTracer(std::vector<Vec3f> points, std::vector<float> curvature, float radius, float corridor)
+  KindTracer(std::vector<Vec3f> points, std::vector<float> curvature, float radius, float corridor, float cos_max_turn)
       : points_(std::move(points)),
         curvature_(std::move(curvature)),
         tree_(points_),
         used_(points_.size(), false),
         radius_(radius),
-        corridor_(corridor) {}
+        corridor_(corridor),
+        cos_max_turn_(cos_max_turn) {}
 
   std::size_t size() const { return points_.size(); }
   bool used(std::uint32_t i) const { return used_[i]; }
@@ -48,6 +49,11 @@ class KindTracer {
     std::vector<Vertex> line(backward.rbegin(), backward.rend());
     line.push_back(start);
     line.insert(line.end(), forward.begin(), forward.end());
+    if (line.size() == 1) {
+      // No growth either way: only the seed is spent, so a bad start cannot punch a hole into a band.
+      used_[seed] = true;
+      return {};
+    }
     use_up(line, closed);
     return line;
   }
@@ -145,8 +151,6 @@ class KindTracer {
       }
       length += (next.position - centre).norm();
       out.push_back(next);
-      // Ahead only points close to the centre: the band ends within this step.
-      if (tmax < 0.5f * radius_) break;
       const Vec3f previous = centre;
       centre = next.position;
       gather(centre, radius_);
@@ -159,6 +163,8 @@ class KindTracer {
       }
       Vec3f next_dir = principal_axis(local_, centre).value_or(Vec3f((centre - previous).normalized()));
       if (next_dir.dot(dir) < 0.f) next_dir = -next_dir;
+      // A sharper turn than max_turn within one step is a corner where another feature line meets this one.
+      if (next_dir.dot(dir) < cos_max_turn_) break;
       dir = next_dir;
     }
     return out;
@@ -189,7 +195,7 @@ class KindTracer {
   std::vector<float> curvature_;
   neighbourhood::KdTree tree_;
   std::vector<bool> used_;
-  float radius_, corridor_;
+  float radius_, corridor_, cos_max_turn_;
   std::vector<std::uint32_t> hits_, found_, step_set_, local_;
   std::vector<float> distances_;
   std::vector<std::pair<std::uint32_t, float>> ahead_;
@@ -203,6 +209,8 @@ TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<Poin
     throw Error("ridge/valley tracing: labels and curvatures must have one entry per point");
   if (!(options.corridor_fraction > 0.f && options.corridor_fraction <= 1.f))
     throw Error("ridge/valley tracing: corridor fraction must be in (0, 1]");
+  if (!(options.max_turn_deg > 0.f && options.max_turn_deg <= 90.f))
+    throw Error("ridge/valley tracing: max turn must be in (0, 90] degrees");
   TraceResult result;
   result.radius = options.radius ? *options.radius : options.radius_factor * spacing;
   if (!(result.radius > 0.f) || !std::isfinite(result.radius))
@@ -225,7 +233,8 @@ TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<Poin
       sub_curvature[s] = feature_curvature[subset[s]];
     }
     KindTracer tracer(std::move(sub_points), std::move(sub_curvature), result.radius,
-                      options.corridor_fraction * result.radius);
+                      options.corridor_fraction * result.radius,
+                      std::cos(options.max_turn_deg * std::numbers::pi_v<float> / 180.f));
     for (std::uint32_t s = 0; s < tracer.size(); ++s) {
       if (tracer.used(s)) continue;
       bool closed = false;
@@ -251,7 +260,8 @@ TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<Poin
 }
 
 nlohmann::json to_json(const TraceOptions& o) {
-  nlohmann::json j = {{"radius_factor", o.radius_factor}, {"corridor_fraction", o.corridor_fraction}};
+  nlohmann::json j = {
+      {"radius_factor", o.radius_factor}, {"corridor_fraction", o.corridor_fraction}, {"max_turn_deg", o.max_turn_deg}};
   j["radius"] = o.radius ? nlohmann::json(*o.radius) : nlohmann::json(nullptr);
   return j;
 }

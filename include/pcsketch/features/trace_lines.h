@@ -17,13 +17,17 @@ struct TraceOptions {
   /// direction (PCA) and the next centre. Paper Fig. 4 uses r = 0.1…0.3 model units; a multiple of h works at any
   /// scale. 4h bridges the gaps that noise and non-maximum suppression leave in a band of feature points while staying
   /// below the size of small features.
-  float radius_factor = 4.f;
+  float radius_factor = 6.f;
   /// Absolute r in model units; overrides radius_factor when set.
   std::optional<float> radius;
   /// Half-width of the corridor around the current direction, as a fraction of r: only feature points closer than
   /// this to the line through the centre along the direction take part in a step. 0.5 follows curves of radius ≥ r
   /// and stops at corners, where the other edges leave the corridor, instead of cutting across them.
   float corridor_fraction = 0.5f;
+  /// Largest change of direction (degrees) between two steps; a sharper turn ends the line. The lines meeting at a
+  /// corner are traced separately (and not joined: see JoinOptions::join_angle_beta_deg). 30° per step of about
+  /// 0.75 r follows curves of radius down to about 1.4 r.
+  float max_turn_deg = 30.f;
 };
 
 /// Ordered lines of one cloud; lines are in the order of their seed point (ridges and valleys interleaved).

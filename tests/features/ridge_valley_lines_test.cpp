@@ -1,0 +1,290 @@
+// Known answers for the whole ridge/valley step: analytic shapes and meshes whose sharp edges are known.
+
+#include "pcsketch/features/ridge_valley_lines.h"
+
+#include <gtest/gtest.h>
+#include <oneapi/tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+#include <string>
+
+#include "pcsketch/io/read_cloud.h"
+#include "pcsketch/io/sample_mesh.h"
+#include "support/analytic_shapes.h"
+
+namespace pcsketch::features {
+namespace {
+
+struct Segment {
+  Vec3f a, b;
+};
+
+float segment_distance(const Vec3f& p, const Vec3f& a, const Vec3f& b) {
+  const Vec3f ab = b - a;
+  const float len2 = ab.squaredNorm();
+  const float t = len2 > 0.f ? std::clamp((p - a).dot(ab) / len2, 0.f, 1.f) : 0.f;
+  return (p - (a + t * ab)).norm();
+}
+
+// Distance from p to a polyline (its segments, or its single vertex).
+float polyline_distance(const Vec3f& p, const Polyline& line) {
+  if (line.size() == 1) return (p - line.points[0]).norm();
+  float best = std::numeric_limits<float>::max();
+  const std::size_t segments = line.closed ? line.size() : line.size() - 1;
+  for (std::size_t s = 0; s < segments; ++s)
+    best = std::min(best, segment_distance(p, line.points[s], line.points[(s + 1) % line.size()]));
+  return best;
+}
+
+std::vector<const Polyline*> of_kind(const std::vector<Polyline>& lines, LineKind kind) {
+  std::vector<const Polyline*> out;
+  for (const Polyline& l : lines)
+    if (l.kind == kind) out.push_back(&l);
+  return out;
+}
+
+// How well `lines` cover `edges`: each edge sampled every h/2; a sample is covered when a line passes within `tol`.
+struct Coverage {
+  double covered = 0, total = 0;       // length
+  std::vector<double> edge_fraction;   // per edge
+  std::vector<std::size_t> pieces;     // per edge: distinct lines covering some sample
+  double fraction() const { return total > 0 ? covered / total : 1.0; }
+};
+
+Coverage coverage(const std::vector<Segment>& edges, const std::vector<const Polyline*>& lines, float h, float tol) {
+  Coverage c;
+  for (const Segment& e : edges) {
+    const float length = (e.b - e.a).norm();
+    const int samples = std::max(1, static_cast<int>(std::ceil(length / (0.5f * h))));
+    int hit = 0;
+    std::map<std::size_t, int> samples_of_line;
+    for (int s = 0; s < samples; ++s) {
+      const Vec3f p = e.a + ((static_cast<float>(s) + 0.5f) / static_cast<float>(samples)) * (e.b - e.a);
+      bool covered = false;
+      for (std::size_t l = 0; l < lines.size(); ++l)
+        if (polyline_distance(p, *lines[l]) <= tol) {
+          covered = true;
+          ++samples_of_line[l];
+        }
+      hit += covered;
+    }
+    const double fraction = static_cast<double>(hit) / samples;
+    c.edge_fraction.push_back(fraction);
+    // A piece runs along the edge for more than 4h (8 samples); the line of another edge ending at a shared corner
+    // comes within tol of a few samples only.
+    c.pieces.push_back(static_cast<std::size_t>(
+        std::count_if(samples_of_line.begin(), samples_of_line.end(), [](const auto& kv) { return kv.second > 8; })));
+    c.covered += fraction * length;
+    c.total += length;
+  }
+  return c;
+}
+
+// Fraction of the vertices of `lines` within `tol` of some edge.
+double precision(const std::vector<const Polyline*>& lines, const std::vector<Segment>& edges, float tol) {
+  std::size_t near = 0, total = 0;
+  for (const Polyline* l : lines)
+    for (const Vec3f& p : l->points) {
+      ++total;
+      near += std::any_of(edges.begin(), edges.end(), [&](const Segment& e) { return segment_distance(p, e.a, e.b) <= tol; });
+    }
+  return total ? static_cast<double>(near) / static_cast<double>(total) : 1.0;
+}
+
+struct Analysed {
+  PointCloud cloud;
+  differential::Surface surface;
+  RidgeValleyLines result;
+};
+
+// The pipeline as a user runs it: normals estimated from the points (a scan has none), then the three steps.
+Analysed run(PointCloud cloud, const RidgeValleyOptions& options = {}) {
+  cloud.normals.clear();
+  Analysed r;
+  r.surface = differential::analyse_surface(cloud);
+  r.result = extract_ridge_valley_lines(cloud, r.surface, options);
+  r.cloud = std::move(cloud);
+  return r;
+}
+
+std::vector<Segment> cube_edges(float a) {
+  std::vector<Segment> edges;
+  for (int axis = 0; axis < 3; ++axis)
+    for (float s : {-a, a})
+      for (float t : {-a, a}) {
+        Vec3f p, q;
+        p[axis] = -a;
+        q[axis] = a;
+        p[(axis + 1) % 3] = q[(axis + 1) % 3] = s;
+        p[(axis + 2) % 3] = q[(axis + 2) % 3] = t;
+        edges.push_back({p, q});
+      }
+  return edges;
+}
+
+void expect_cube_edges_traced(const Analysed& r, float a) {
+  const float h = r.surface.spacing;
+  const std::vector<Segment> edges = cube_edges(a);
+  const auto ridges = of_kind(r.result.lines, LineKind::Ridge);
+  EXPECT_TRUE(of_kind(r.result.lines, LineKind::Valley).empty());
+  const Coverage c = coverage(edges, ridges, h, 2.f * h);
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    EXPECT_GE(c.edge_fraction[e], 0.9) << "edge " << e;
+    EXPECT_LE(c.pieces[e], 2u) << "edge " << e;
+  }
+  EXPECT_GE(precision(ridges, edges, 2.f * h), 0.95);
+}
+
+TEST(RidgeValleyLines, CubeEdgesAreRidges) {
+  const Analysed r = run(test::cube(1.f, {.n = 30000, .seed = 42}));
+  expect_cube_edges_traced(r, 1.f);
+}
+
+TEST(RidgeValleyLines, NoisyCubeEdgesAreRidges) {
+  const float a = 1.f;
+  const float sigma = 0.001f * 2.f * std::sqrt(3.f) * a;  // 0.1% of the diagonal
+  const Analysed r = run(test::cube(a, {.n = 30000, .seed = 7, .noise_sigma = sigma}));
+  expect_cube_edges_traced(r, a);
+}
+
+TEST(RidgeValleyLines, SameOutputForOneAndTwoThreads) {
+  const PointCloud cloud = test::cube(1.f, {.n = 20000, .seed = 3, .noise_sigma = 0.003f});
+  const auto with_threads = [&](std::size_t threads) {
+    oneapi::tbb::global_control limit(oneapi::tbb::global_control::max_allowed_parallelism, threads);
+    return run(cloud);
+  };
+  const Analysed one = with_threads(1);
+  const Analysed two = with_threads(2);
+  EXPECT_EQ(one.result.detection.labels, two.result.detection.labels);
+  ASSERT_EQ(one.result.lines.size(), two.result.lines.size());
+  for (std::size_t l = 0; l < one.result.lines.size(); ++l) {
+    EXPECT_EQ(one.result.lines[l].points, two.result.lines[l].points);
+    EXPECT_EQ(one.result.lines[l].point_index, two.result.lines[l].point_index);
+  }
+}
+
+TEST(RidgeValleyLines, SphereAndCylinderHaveNoLines) {
+  const Analysed sphere = run(test::sphere(1.f, {.n = 20000, .seed = 5}));
+  EXPECT_TRUE(sphere.result.lines.empty()) << sphere.result.lines.size() << " lines";
+  const Analysed cylinder = run(test::cylinder(1.f, 2.f, {.n = 20000, .seed = 6}));
+  EXPECT_TRUE(cylinder.result.lines.empty()) << cylinder.result.lines.size() << " lines";
+}
+
+TEST(RidgeValleyLines, PaperRuleMarksEverySpherePoint) {
+  // The plain relative rule has nothing to separate uniform curvature from an edge: what the Salient rule fixes.
+  RidgeValleyOptions paper;
+  paper.detection.rule = DetectionRule::Paper;
+  const Analysed sphere = run(test::sphere(1.f, {.n = 5000, .seed = 5}), paper);
+  EXPECT_GT(sphere.result.detection.ridge_points, 4500u);
+}
+
+// Adds the rectangle with corners p, p+u, p+u+v, p+v as two triangles.
+void add_rectangle(Mesh& mesh, const Vec3f& p, const Vec3f& u, const Vec3f& v) {
+  const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+  mesh.vertices.insert(mesh.vertices.end(), {p, p + u, p + u + v, p + v});
+  mesh.faces.push_back({base, base + 1, base + 2});
+  mesh.faces.push_back({base, base + 2, base + 3});
+}
+
+TEST(RidgeValleyLines, NotchedBoxInnerEdgesAreValleysOuterEdgesRidges) {
+  // Box [-1,1]×[-Y,Y]×[-0.6,0.6] with a notch x ∈ [-w,w], z ∈ [top-d, top] cut across the top face along y.
+  const float Y = 0.8f, bottom = -0.6f, top = 0.6f, w = 0.3f, d = 0.4f, floor = top - d;
+  Mesh mesh;
+  const Vec3f ey(0, 2 * Y, 0);
+  const auto rect_xz = [&](float x0, float x1, float z0, float z1) {  // profile rectangle, both caps
+    add_rectangle(mesh, {x0, -Y, z0}, {x1 - x0, 0, 0}, {0, 0, z1 - z0});
+    add_rectangle(mesh, {x0, Y, z0}, {x1 - x0, 0, 0}, {0, 0, z1 - z0});
+  };
+  rect_xz(-1, -w, bottom, top);
+  rect_xz(-w, w, bottom, floor);
+  rect_xz(w, 1, bottom, top);
+  add_rectangle(mesh, {-1, -Y, bottom}, {2, 0, 0}, ey);             // bottom
+  add_rectangle(mesh, {-1, -Y, bottom}, {0, 0, top - bottom}, ey);  // x = -1
+  add_rectangle(mesh, {1, -Y, bottom}, {0, 0, top - bottom}, ey);   // x = +1
+  add_rectangle(mesh, {-1, -Y, top}, {1 - w, 0, 0}, ey);            // top, left of the notch
+  add_rectangle(mesh, {w, -Y, top}, {1 - w, 0, 0}, ey);             // top, right of the notch
+  add_rectangle(mesh, {-w, -Y, floor}, {0, 0, d}, ey);              // notch walls
+  add_rectangle(mesh, {w, -Y, floor}, {0, 0, d}, ey);
+  add_rectangle(mesh, {-w, -Y, floor}, {2 * w, 0, 0}, ey);          // notch floor
+  const Analysed r = run(io::sample_mesh(mesh, {.n = 30000, .seed = 9}));
+  const float h = r.surface.spacing;
+  const std::vector<Segment> inner = {{{-w, -Y, floor}, {-w, Y, floor}}, {{w, -Y, floor}, {w, Y, floor}}};
+  const std::vector<Segment> rim = {{{-w, -Y, top}, {-w, Y, top}}, {{w, -Y, top}, {w, Y, top}}};
+  const auto valleys = of_kind(r.result.lines, LineKind::Valley);
+  const auto ridges = of_kind(r.result.lines, LineKind::Ridge);
+  const Coverage valley_cover = coverage(inner, valleys, h, 2.f * h);
+  const Coverage rim_cover = coverage(rim, ridges, h, 2.f * h);
+  EXPECT_GE(valley_cover.fraction(), 0.9);
+  EXPECT_GE(rim_cover.fraction(), 0.9);
+  // Inner edges are not ridges, rims are not valleys, and valley lines lie on the inner edges only.
+  EXPECT_LT(coverage(inner, ridges, h, 2.f * h).fraction(), 0.1);
+  EXPECT_LT(coverage(rim, valleys, h, 2.f * h).fraction(), 0.1);
+  EXPECT_GE(precision(valleys, inner, 2.f * h), 0.95);
+}
+
+// Sharp edges of a mesh (dihedral angle above `degrees`), split into convex and concave ones.
+struct SharpEdges {
+  std::vector<Segment> convex, concave;
+};
+
+SharpEdges sharp_edges(const Mesh& mesh, float degrees) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> faces_of_edge;
+  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
+      faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(f);
+    }
+  const auto normal = [&](std::uint32_t f) {
+    const auto& t = mesh.faces[f];
+    return Vec3f((mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).normalized());
+  };
+  const float cos_limit = std::cos(degrees * std::numbers::pi_v<float> / 180.f);
+  SharpEdges out;
+  for (const auto& [edge, faces] : faces_of_edge) {
+    if (faces.size() != 2) continue;
+    const Vec3f n0 = normal(faces[0]), n1 = normal(faces[1]);
+    if (n0.dot(n1) > cos_limit) continue;
+    // Convex when the far vertex of the second face lies below the first face's plane (outward normals).
+    std::uint32_t far = 0;
+    for (std::uint32_t v : mesh.faces[faces[1]])
+      if (v != edge.first && v != edge.second) far = v;
+    const Segment s{mesh.vertices[edge.first], mesh.vertices[edge.second]};
+    ((mesh.vertices[far] - s.a).dot(n0) < 0.f ? out.convex : out.concave).push_back(s);
+  }
+  return out;
+}
+
+void expect_fandisk_edges(const Analysed& r, const SharpEdges& sharp) {
+  const float h = r.surface.spacing;
+  const Coverage convex = coverage(sharp.convex, of_kind(r.result.lines, LineKind::Ridge), h, 2.f * h);
+  const Coverage concave = coverage(sharp.concave, of_kind(r.result.lines, LineKind::Valley), h, 2.f * h);
+  EXPECT_GE(convex.fraction(), 0.85) << "convex sharp edges covered by ridges";
+  EXPECT_GE(concave.fraction(), 0.85) << "concave sharp edges covered by valleys";
+}
+
+// Fandisk (tests/fixtures/fandisk.off, copied from the shared data set: a CAD part with sharp convex and concave
+// edges and non-uniform vertex density).
+TEST(RidgeValleyLines, FandiskSharpEdges) {
+  const std::string path = std::string(PCSKETCH_FIXTURES) + "/fandisk.off";
+  const Mesh mesh = io::read_mesh(path);
+  const SharpEdges sharp = sharp_edges(mesh, 40.f);
+  ASSERT_GT(sharp.convex.size(), 100u);
+  ASSERT_GT(sharp.concave.size(), 20u);
+  // The sample shares the mesh's origin, so mesh and cloud coordinates agree.
+  expect_fandisk_edges(run(io::sample_mesh(mesh, {.n = 100000, .seed = 1})), sharp);
+}
+
+TEST(RidgeValleyLines, FandiskVertices) {
+  const std::string path = std::string(PCSKETCH_FIXTURES) + "/fandisk.off";
+  const Mesh mesh = io::read_mesh(path);
+  io::ReadResult read = io::read_point_cloud(path);
+  ASSERT_EQ(read.cloud.origin, mesh.origin);
+  expect_fandisk_edges(run(std::move(read.cloud)), sharp_edges(mesh, 40.f));
+}
+
+}  // namespace
+}  // namespace pcsketch::features
