@@ -1,0 +1,295 @@
+// pcsketch draw INPUT -o OUT.svg [-o OUT.png] [-o OUT.pdf] [--json OUT.json] [--stages DIR]: the whole pipeline.
+// Flags bind straight to the fields of DrawOptions; every default lives in the option structs.
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "pcsketch/core/error.h"
+#include "pcsketch/io/read_cloud.h"
+#include "pcsketch/pipeline.h"
+#include "pcsketch/render/write.h"
+
+namespace pcsketch::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct DrawArgs {
+  std::string input;
+  std::vector<std::string> outputs;
+  std::string json;
+  std::string stages;
+  bool timings = false;
+  DrawOptions options;
+};
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+/// "X,Y,Z" → vector; throws CLI::ValidationError (exit 1) otherwise.
+Vec3d parse_vec3(const std::string& flag, const std::string& text) {
+  std::istringstream in(text);
+  Vec3d v;
+  char c1 = 0, c2 = 0;
+  if (!(in >> v.x() >> c1 >> v.y() >> c2 >> v.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
+      !v.allFinite())
+    throw CLI::ValidationError(flag, "expected three numbers X,Y,Z, got '" + text + "'");
+  return v;
+}
+
+/// A vector-valued flag "X,Y,Z" that stores into `target` when given.
+template <class Set>
+CLI::Option* add_vec3(CLI::App* cmd, const std::string& name, const std::string& help, Set set) {
+  const std::string flag = name.substr(name.rfind(',') + 1);
+  return cmd->add_option_function<std::string>(
+      name, [flag, set](const std::string& s) { set(parse_vec3(flag, s)); }, help);
+}
+
+template <class Enum>
+CLI::Option* add_enum(CLI::App* cmd, const std::string& name, Enum& target, const std::map<std::string, Enum>& names,
+                      const std::string& help) {
+  return cmd->add_option(name, target, help)->transform(CLI::CheckedTransformer(names, CLI::ignore_case));
+}
+
+void write_all(const Drawing& drawing, const std::vector<std::string>& paths, const render::RenderOptions& render) {
+  for (const std::string& path : paths) render::write_drawing(drawing, path, render);
+}
+
+void print_timings(const Timings& t, std::size_t points) {
+  const std::vector<std::string_view> paper = {"ridge-valley points extraction",
+                                               "ridge-valley points connection",
+                                               "contour points extraction",
+                                               "contour line connection",
+                                               "drawing",
+                                               "total"};
+  std::printf("%-34s %10s  %s\n", "stage", "seconds", "(paper Table 2 row)");
+  for (const auto& [name, seconds] : t.all_rows()) {
+    const bool in_paper = std::find(paper.begin(), paper.end(), name) != paper.end();
+    std::printf("%-34.*s %10.4f  %s\n", static_cast<int>(name.size()), name.data(), seconds, in_paper ? "*" : "");
+  }
+  std::printf("%-34s %10zu\n", "points", points);
+}
+
+void run_draw(DrawArgs& args, const GlobalOptions& global) {
+  if (args.outputs.empty() && args.json.empty() && args.stages.empty())
+    throw CLI::ValidationError("draw", "nothing to write: give -o OUT.svg|png|pdf, --json OUT.json or --stages DIR");
+  for (const std::string& path : args.outputs)
+    if (!render::is_supported_output(path))
+      throw CLI::ValidationError("--output", path + ": unknown format (use .svg, .pdf, .png or .json)");
+  if (!args.json.empty()) args.outputs.push_back(args.json);
+
+  DrawOptions& options = args.options;
+  options.progress = make_progress(global);
+  Timings timings;
+  auto start = Clock::now();
+  io::ReadResult read = io::read_point_cloud(args.input);
+  timings.read = seconds_since(start);
+  print_warnings(global, read.warnings);
+
+  const Prepared prepared = prepare(std::move(read.cloud), options);
+  print_warnings(global, prepared.warnings);
+  timings += prepared.timings;
+
+  if (!args.outputs.empty()) {
+    DrawResult result = draw_view(prepared, options.camera, options);
+    print_warnings(global, result.warnings);
+    start = Clock::now();
+    write_all(result.drawing, args.outputs, options.render);
+    result.timings.drawing += seconds_since(start);
+    timings += result.timings;
+  }
+  if (!args.stages.empty()) {
+    fs::create_directories(args.stages);
+    // The stage images take the formats of the main outputs (PNG when there are none).
+    std::vector<std::string> extensions;
+    for (const std::string& path : args.outputs) {
+      const std::string ext = fs::path(path).extension().string();
+      if (ext != ".json" && std::find(extensions.begin(), extensions.end(), ext) == extensions.end())
+        extensions.push_back(ext);
+    }
+    if (extensions.empty()) extensions.push_back(".png");
+    for (const auto& [stem, drawing] : stage_drawings(prepared, options.camera, options))
+      for (const std::string& ext : extensions)
+        render::write_drawing(drawing, fs::path(args.stages) / (stem + ext), options.render);
+  }
+  if (args.timings) print_timings(timings, prepared.cloud.size());
+}
+
+}  // namespace
+
+void add_draw_command(CLI::App& app, const GlobalOptions& global) {
+  auto args = std::make_shared<DrawArgs>();
+  DrawOptions& o = args->options;
+  CLI::App* cmd = app.add_subcommand(
+      "draw", "Sketch drawing of a point cloud: contours, ridges, valleys, thickness, shadow hatching (paper Fig. 2)");
+  cmd->add_option("INPUT", args->input, "Point cloud: PLY, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)")
+      ->required();
+  cmd->add_option("-o,--output", args->outputs, "Output file; format from the extension: .svg .png .pdf (repeatable)");
+  cmd->add_option("--json", args->json, "Write every stroke as JSON (world and image coordinates, widths)");
+  cmd->add_option("--stages", args->stages,
+                  "Directory for the paper's Fig. 19 columns: b_contours, c_ridges_valleys, d_fused, e_thickness, "
+                  "f_shadow (formats of -o, PNG if none)");
+  cmd->add_flag("--timings", args->timings, "Print seconds per stage (the paper's Table 2 rows marked *)");
+
+  // Camera (views issue).
+  const std::string cam = "Camera";
+  add_vec3(cmd, "--view", "Direction of sight X,Y,Z (default 0,0,1: the paper looks along +z)", [&o](const Vec3d& v) {
+    o.camera.direction = v;
+  })->group(cam);
+  add_vec3(cmd, "--up", "Up hint X,Y,Z (default 0,1,0)", [&o](const Vec3d& v) { o.camera.up = v; })->group(cam);
+  cmd->add_option_function<double>(
+         "--azimuth", [&o](const double& a) { o.camera.azimuth_deg = a; },
+         "Viewer azimuth around up, degrees (0 = looking along +z)")
+      ->group(cam);
+  cmd->add_option_function<double>(
+         "--elevation", [&o](const double& e) { o.camera.elevation_deg = e; },
+         "Viewer elevation above the horizon, degrees (positive looks down)")
+      ->group(cam);
+  cmd->add_flag_function(
+         "--perspective", [&o](std::int64_t) { o.camera.projection = view::Projection::Perspective; },
+         "Perspective projection (default orthographic)")
+      ->group(cam);
+  add_vec3(cmd, "--eye", "Perspective eye point X,Y,Z (world)", [&o](const Vec3d& v) { o.camera.eye = v; })->group(cam);
+  add_vec3(cmd, "--target", "Perspective target point X,Y,Z (world)", [&o](const Vec3d& v) {
+    o.camera.target = v;
+  })->group(cam);
+  cmd->add_option("--fov", o.camera.fov_deg, "Perspective vertical field of view, degrees")
+      ->capture_default_str()
+      ->group(cam);
+  cmd->add_option_function<std::string>(
+         "--size",
+         [&o](const std::string& s) {
+           int w = 0, h = 0;
+           char x = 0;
+           std::istringstream in(s);
+           if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || w <= 0 || h <= 0 || !(in >> std::ws).eof())
+             throw CLI::ValidationError("--size", "expected WxH in pixels, e.g. 1024x768, got '" + s + "'");
+           o.camera.width = w;
+           o.camera.height = h;
+         },
+         "Image size WxH in pixels (default 1024x1024)")
+      ->group(cam);
+  cmd->add_option("--margin", o.camera.margin, "Empty border, fraction of the smaller image side")
+      ->capture_default_str()
+      ->group(cam);
+
+  // Surface analysis (foundation issue).
+  const std::string surf = "Surface";
+  cmd->add_option("--neighbours", o.surface.neighbourhood.k, "Paper's k: neighbours per point (normals, curvature)")
+      ->capture_default_str()
+      ->check(CLI::Range(3, 256))
+      ->group(surf);
+  cmd->add_flag("--recompute-normals", o.surface.recompute_normals, "Ignore the file's normals, estimate them by PCA")
+      ->group(surf);
+
+  // Ridge and valley lines (paper §IV.A).
+  const std::string feat = "Ridge/valley lines (paper IV.A)";
+  cmd->add_option("--alpha", o.features.detection.ridge_threshold_alpha,
+                  "Paper's alpha: a ridge/valley point's curvature is at least alpha times the extreme of its side "
+                  "(smaller: more lines)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0))
+      ->group(feat);
+  add_enum(cmd, "--detection", o.features.detection.rule,
+           {{"salient", features::DetectionRule::Salient}, {"paper", features::DetectionRule::Paper}},
+           "salient (paper's rule + saliency floors and non-maximum suppression) or paper (the plain rule)")
+      ->group(feat);
+  add_enum(cmd, "--extreme", o.features.detection.extreme,
+           {{"percentile", features::CurvatureExtreme::Percentile}, {"minmax", features::CurvatureExtreme::MinMax}},
+           "Extreme curvature of the rule: percentile (robust) or minmax (the paper's)")
+      ->group(feat);
+  cmd->add_option("--radius", o.features.tracing.radius_factor, "Paper's r: tracing radius in units of h (spacing)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->group(feat);
+  cmd->add_option("--join-distance", o.features.joining.join_distance_alpha,
+                  "Join endpoints closer than this times r (paper: alpha*r)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(feat);
+  cmd->add_option("--beta", o.features.joining.join_angle_beta_deg,
+                  "Paper's beta: largest angle between end tangents when joining lines, degrees")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 180.0))
+      ->group(feat);
+  cmd->add_option("--min-length", o.features.joining.min_length_factor,
+                  "Drop ridge/valley lines shorter than this, in units of h")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(feat);
+
+  // Contours and visibility (paper §IV.B).
+  const std::string view_group = "Contours and visibility (paper IV.B)";
+  cmd->add_option("--z-max", o.view.contours.z_max_factor,
+                  "Paper's z_max: largest distance of the next contour point from the direction line, units of h")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->group(view_group);
+  cmd->add_option("--contour-radius", o.view.contours.radius_factor,
+                  "2D neighbourhood radius of the boundary test, units of the projected spacing")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->group(view_group);
+  add_enum(cmd, "--contour-connection", o.view.contours.connection,
+           {{"outermost", view::OutlineConnection::Outermost},
+            {"direction-guided", view::OutlineConnection::DirectionGuided}},
+           "Outline tracing: outermost (no zig-zags) or direction-guided (the paper's)")
+      ->group(view_group);
+  cmd->add_flag("!--no-interior-contours", o.view.contours.interior,
+                "Only the outline: no occluding contours inside it (the paper's contours)")
+      ->group(view_group);
+  add_enum(cmd, "--hidden-lines", o.render.hidden_lines,
+           {{"none", render::HiddenLines::None}, {"dashed", render::HiddenLines::Dashed}},
+           "Hidden lines: none, or dashed (thin grey, in their own SVG layer)")
+      ->group(view_group);
+
+  // Stroke thickness (paper §V).
+  const std::string thick = "Stroke thickness (paper V)";
+  add_enum(cmd, "--thickness", o.thickness.model,
+           {{"constant", stylize::ThicknessModel::Constant},
+            {"depth", stylize::ThicknessModel::Depth},
+            {"angle", stylize::ThicknessModel::Angle},
+            {"combined", stylize::ThicknessModel::Combined}},
+           "Width model: constant, depth (nearer thicker), angle (sharper bend thicker) or combined")
+      ->group(thick);
+  cmd->add_option("--rho-min", o.thickness.rho_min, "Paper's rho_min: thinnest stroke, pixels")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(thick);
+  cmd->add_option("--rho-max", o.thickness.rho_max, "Paper's rho_max: thickest stroke, pixels")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(thick);
+  cmd->add_option("--cofi", o.thickness.cofi, "Paper's cofi: factor on every width")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(thick);
+  cmd->add_flag("!--no-brush", o.thickness.brush, "No brush taper at the ends of lines")->group(thick);
+
+  // What is drawn and how it is written.
+  const std::string out = "Output";
+  cmd->add_flag("!--no-contours", o.lines.contours, "Leave out contours")->group(out);
+  cmd->add_flag("!--no-ridges", o.lines.ridges, "Leave out ridge lines")->group(out);
+  cmd->add_flag("!--no-valleys", o.lines.valleys, "Leave out valley lines")->group(out);
+  cmd->add_flag("--plotter", o.render.plotter, "Pen-plotter output: centre-lines of one width, no grey fills")
+      ->group(out);
+  cmd->add_option("--pen-width", o.render.pen_width, "Plotter line width, pixels")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->group(out);
+  cmd->add_option_function<double>(
+         "--page-width-mm", [&o](const double& w) { o.render.page_width_mm = w; },
+         "SVG/PDF page width in millimetres (default: the image size in CSS pixels)")
+      ->check(CLI::PositiveNumber)
+      ->group(out);
+
+  cmd->callback([args, &global] { run_draw(*args, global); });
+}
+
+}  // namespace pcsketch::cli
