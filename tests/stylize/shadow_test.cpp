@@ -1,6 +1,7 @@
 #include "pcsketch/stylize/shadow.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 
@@ -181,6 +182,27 @@ TEST(PaperShadow, LitRidgeOnSphereCastsNothing) {
   EXPECT_EQ(r.casting_candidates, 60u);
   EXPECT_EQ(r.cast_vertices, 0u);
   EXPECT_TRUE(r.strokes.empty());
+}
+
+TEST(Shadow, SameResultForAnyThreadCount) {
+  const PointCloud cloud = concat(test::plane(1.f, {.n = 20000}), test::sphere(0.3f, {.n = 8000}), Vec3f(0, 0, 0.3f));
+  const Scene s(cloud, 0.03f, 0.014f, {.direction = Vec3d(0.2, 0.1, -1), .width = 300, .height = 300});
+  const std::vector<Polyline> lines = {ridge({-0.5f, -0.5f, 0.25f}, {0.5f, 0.5f, 0.25f}, 60)};
+  const ShadowOptions o{.mode = ShadowMode::Both, .light = {.direction = Vec3f(1, 0.3f, -1)}};
+  const ShadowResult many = s.shade(lines, o);
+  ShadowResult one;
+  {
+    tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+    one = s.shade(lines, o);
+  }
+  ASSERT_GT(many.strokes.size(), 10u);
+  ASSERT_EQ(many.strokes.size(), one.strokes.size());
+  ASSERT_EQ(many.regions.size(), one.regions.size());
+  for (std::size_t i = 0; i < many.strokes.size(); ++i) {
+    ASSERT_EQ(many.strokes[i].image_points.size(), one.strokes[i].image_points.size());
+    for (std::size_t j = 0; j < many.strokes[i].image_points.size(); ++j)
+      EXPECT_EQ(many.strokes[i].image_points[j], one.strokes[i].image_points[j]);
+  }
 }
 
 TEST(Shadow, RejectsMismatchedInput) {
