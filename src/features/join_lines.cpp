@@ -85,8 +85,6 @@ JoinResult join_lines(std::vector<Polyline> lines, float radius, float spacing, 
 
   const float reach = options.join_distance_alpha * radius;
   const float cos_beta = std::cos(options.join_angle_beta_deg * std::numbers::pi_v<float> / 180.f);
-  // Below this gap the direction between the endpoints is meaningless; only the tangents decide.
-  const float touching = 0.25f * spacing;
   JoinResult result;
   std::vector<bool> alive(lines.size(), true);
 
@@ -120,9 +118,14 @@ JoinResult join_lines(std::vector<Polyline> lines, float radius, float spacing, 
         if (lines[p.line].kind != lines[q.line].kind) continue;
         if (p.line == q.line && lines[p.line].length() < 2.f * reach) continue;  // a short line cannot close
         if (-p.tangent.dot(q.tangent) < cos_beta) continue;
-        if (distances[h] > touching) {
-          const Vec3f d = (q.position - p.position) / distances[h];
-          if (p.tangent.dot(d) < cos_beta || -q.tangent.dot(d) < cos_beta) continue;
+        const Vec3f d = q.position - p.position;
+        if (distances[h] > radius) {
+          // A long gap: each tangent must aim at the other endpoint within β.
+          if (p.tangent.dot(d) < cos_beta * distances[h] || -q.tangent.dot(d) < cos_beta * distances[h]) continue;
+        } else if (p.tangent.dot(d) < 0.f || -q.tangent.dot(d) < 0.f) {
+          // A short gap: the lateral offset of the two ends (up to about h) would swamp the angle of the connecting
+          // segment, so it is enough that each end lies ahead of the other.
+          continue;
         }
         pairs.emplace_back(distances[h], a, b);
       }

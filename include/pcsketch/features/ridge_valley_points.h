@@ -47,7 +47,7 @@ struct DetectionOptions {
   DetectionRule rule = DetectionRule::Salient;
   /// Salient rule: |k_i|·h must reach this (h = mean spacing): a bend whose radius of curvature is larger than h/0.05
   /// = 20h is resolved by the sampling as a smooth surface, not an edge. Dimensionless.
-  float saliency_floor = 0.08f;
+  float saliency_floor = 0.065f;
   /// Salient rule: |k_i| must reach this many times the median |k_i| of the whole cloud. Surfaces of uniform curvature
   /// (sphere, cylinder) and the curvature that noise gives to flat parts sit at the median; edges stand far above.
   /// 4 is above the 99th percentile of |k| produced by isotropic noise on a plane (ratio ≈ 3.5 for a Gaussian).
