@@ -1,0 +1,94 @@
+// Runs the built pcsketch binary: `info` and `sample` on good and bad input, checking exit status and output.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "pcsketch/io/read_cloud.h"
+
+namespace pcsketch {
+namespace {
+
+struct CommandRun {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// One temp dir per test for the captured output and any files the command writes.
+class CliIo : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("pcsketch_cli_io_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  CommandRun run(const std::string& args) const {
+    const std::string command =
+        std::string(PCSKETCH_CLI) + " " + args + " >" + (dir_ / "out").string() + " 2>" + (dir_ / "err").string();
+    const int raw = std::system(command.c_str());
+    CommandRun r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(dir_ / "out");
+    r.err = slurp(dir_ / "err");
+    return r;
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(CliIo, InfoOnTheBundledBunny) {
+  const CommandRun r = run("info " PCSKETCH_DATA "/bunny.ply");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("points      37706"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("format      ply binary_little_endian"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("spacing h   0.00"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("read time"), std::string::npos) << r.out;
+}
+
+TEST_F(CliIo, MalformedInputExitsWithStatus2AndOneLine) {
+  for (const char* file : {"truncated.ply", "nonnumeric.xyz", "empty.ply", "huge_count.ply"}) {
+    SCOPED_TRACE(file);
+    const std::string path = std::string(PCSKETCH_FIXTURES) + "/malformed/" + file;
+    const CommandRun r = run("info " + path);
+    EXPECT_EQ(r.status, 2);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(path), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  EXPECT_EQ(run("info /nonexistent.ply").status, 2);
+}
+
+TEST_F(CliIo, SampleWritesADeterministicCloud) {
+  const std::string mesh = std::string(PCSKETCH_FIXTURES) + "/ok/cube.off";
+  const std::string a = (dir_ / "a.ply").string(), b = (dir_ / "b.ply").string();
+  ASSERT_EQ(run("sample " + mesh + " -n 2000 --noise 0.001 --seed 4 -o " + a).status, 0);
+  ASSERT_EQ(run("--threads 1 sample " + mesh + " -n 2000 --noise 0.001 --seed 4 -o " + b).status, 0);
+  EXPECT_EQ(slurp(a), slurp(b));
+  const io::ReadResult r = io::read_point_cloud(a);
+  EXPECT_EQ(r.cloud.size(), 2000u);
+  EXPECT_FALSE(r.cloud.has_normals());
+  ASSERT_EQ(run("sample " + mesh + " -n 10 --keep-normals -o " + b).status, 0);
+  EXPECT_TRUE(io::read_point_cloud(b).cloud.has_normals());
+  // A cloud without faces, and a bad count.
+  EXPECT_EQ(run("sample " + std::string(PCSKETCH_FIXTURES) + "/ok/points.xyz -n 10 -o " + a).status, 2);
+  EXPECT_EQ(run("sample " + mesh + " -n 0 -o " + a).status, 1);
+}
+
+}  // namespace
+}  // namespace pcsketch
