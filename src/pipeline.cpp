@@ -87,10 +87,37 @@ struct StyleRequest {
   stylize::ThicknessOptions thickness;
 };
 
+/// Shadow hatching of the view's visible ridge and valley lines (as selected), appended to the drawing.
+void add_shadows(const Prepared& prepared, const view::ViewResult& view, const LineSelection& selection,
+                 const stylize::ShadowOptions& options, Drawing& drawing) {
+  std::vector<Polyline> lines;
+  std::vector<std::vector<std::uint8_t>> visible;
+  for (const view::ViewLine& v : view.lines) {
+    if ((v.line.kind == LineKind::Ridge && selection.ridges) || (v.line.kind == LineKind::Valley && selection.valleys)) {
+      lines.push_back(v.line);
+      visible.push_back(v.visible);
+    }
+  }
+  const stylize::ShadowInput input{prepared.cloud.positions, prepared.cloud.normals, prepared.local_spacing,
+                                   *prepared.scene, view.camera, prepared.surface.spacing, lines, visible};
+  stylize::ShadowResult shadows = stylize::shadow_hatching(input, options);
+  drawing.strokes.insert(drawing.strokes.end(), std::make_move_iterator(shadows.strokes.begin()),
+                         std::make_move_iterator(shadows.strokes.end()));
+  drawing.regions = std::move(shadows.regions);
+}
+
+/// Lines with thickness, then (when selected) shadow hatching; adds the seconds spent to `timings`.
 Drawing style(const Prepared& prepared, const view::ViewResult& view, const StyleRequest& request,
-              const nlohmann::json& parameters) {
+              const stylize::ShadowOptions& shadow, const nlohmann::json& parameters, Timings& timings) {
+  auto start = Clock::now();
   Drawing d = empty_drawing(view.camera, prepared.cloud.origin, parameters);
   d.strokes = line_strokes(view, request.lines, request.thickness);
+  timings.drawing += seconds_since(start);
+  if (request.lines.hatching && shadow.mode != stylize::ShadowMode::None) {
+    start = Clock::now();
+    add_shadows(prepared, view, request.lines, shadow, d);
+    timings.shadows += seconds_since(start);
+  }
   return d;
 }
 
@@ -162,6 +189,7 @@ nlohmann::json DrawOptions::to_json() const {
           {"camera", camera_options_json(camera)},
           {"view", view.to_json()},
           {"thickness", thickness.to_json()},
+          {"shadow", shadow.to_json()},
           {"render", render.to_json()},
           {"lines",
            {{"contours", lines.contours}, {"ridges", lines.ridges}, {"valleys", lines.valleys},
@@ -199,7 +227,9 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   p.warnings.insert(p.warnings.end(), p.features.warnings.begin(), p.features.warnings.end());
 
   const auto start = Clock::now();
-  p.scene.emplace(view::build_surface_scene(p.cloud, p.surface, options.scene));
+  p.local_spacing = view::local_spacing(p.surface.neighbourhoods);
+  // The scene of view::build_surface_scene, with the radii kept for shadow splatting.
+  p.scene.emplace(p.cloud.positions, p.cloud.normals, p.local_spacing, options.scene);
   p.timings.scene = seconds_since(start);
   return p;
 }
@@ -214,9 +244,7 @@ DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera
     return result;
   }
   const view::ViewResult v = compute_view(prepared, camera, options, result.timings, result.warnings);
-  const auto start = Clock::now();
-  result.drawing = style(prepared, v, {options.lines, options.thickness}, parameters);
-  result.timings.drawing = seconds_since(start);
+  result.drawing = style(prepared, v, {options.lines, options.thickness}, options.shadow, parameters, result.timings);
   return result;
 }
 
@@ -251,7 +279,8 @@ std::vector<std::pair<std::string, Drawing>> stage_drawings(const Prepared& prep
   Timings timings;
   Warnings warnings;
   const view::ViewResult v = compute_view(prepared, camera, options, timings, warnings);
-  for (const auto& [stem, request] : columns) out.emplace_back(stem, style(prepared, v, request, parameters));
+  for (const auto& [stem, request] : columns)
+    out.emplace_back(stem, style(prepared, v, request, options.shadow, parameters, timings));
   return out;
 }
 

@@ -15,6 +15,7 @@
 #include "pcsketch/differential/surface.h"
 #include "pcsketch/features/ridge_valley_lines.h"
 #include "pcsketch/render/options.h"
+#include "pcsketch/stylize/shadow.h"
 #include "pcsketch/stylize/thickness.h"
 #include "pcsketch/view/camera.h"
 #include "pcsketch/view/surface_scene.h"
@@ -39,6 +40,7 @@ struct DrawOptions {
   view::CameraOptions camera;                  ///< default: the paper's orthographic view along +z, 1024 × 1024 px
   view::ViewOptions view;                      ///< contours (z_max, …) and visibility
   stylize::ThicknessOptions thickness;         ///< ρ_min, ρ_max, cofi, depth/angle/brush models
+  stylize::ShadowOptions shadow;               ///< light, d, k set, attached hatching (paper §VI)
   render::RenderOptions render;                ///< hidden lines, plotter mode, page size (used by the writers)
   LineSelection lines;                         ///< which kinds of line are drawn
   /// Clouds with fewer points than this give an empty drawing and a warning instead of an analysis: a surface
@@ -79,6 +81,7 @@ struct Prepared {
   PointCloud cloud;                      ///< reordered, with oriented normals
   differential::Surface surface;         ///< neighbourhoods, spacing h, curvature
   features::RidgeValleyLines features;   ///< ridge and valley lines
+  std::vector<float> local_spacing;      ///< #P disc radii of the scene before its factor (view::local_spacing)
   std::optional<view::SurfaceScene> scene;  ///< absent when the cloud was too small to analyse
   Timings timings;
   Warnings warnings;
