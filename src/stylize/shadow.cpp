@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <string>
 
 #include "pcsketch/core/error.h"
@@ -16,14 +17,18 @@ namespace pcsketch::stylize {
 
 namespace {
 
-constexpr float kDegToRad = 0.017453292519943295f;
+constexpr float kDegToRad = std::numbers::pi_v<float> / 180.f;
 
 const char* name(ShadowMode m) {
   switch (m) {
-    case ShadowMode::None: return "none";
-    case ShadowMode::Paper: return "paper";
-    case ShadowMode::Attached: return "attached";
-    case ShadowMode::Both: return "both";
+    case ShadowMode::None:
+      return "none";
+    case ShadowMode::Paper:
+      return "paper";
+    case ShadowMode::Attached:
+      return "attached";
+    case ShadowMode::Both:
+      return "both";
   }
   return "?";
 }
@@ -124,17 +129,16 @@ LineShadow line_shadow(const ShadowInput& in, const Polyline& line, const std::v
 
   for (std::size_t j = 1; j <= m; ++j) {
     const float grey = detail::graded(o.cast_grey_near, o.cast_grey_far, j - 1, m);
-    for (const Chain& c : chains(n, line.closed, [&](std::size_t s) {
-           return ok(s, j) && ok((s + 1) % n, j) && !jump(s);
-         })) {
+    for (const Chain& c :
+         chains(n, line.closed, [&](std::size_t s) { return ok(s, j) && ok((s + 1) % n, j) && !jump(s); })) {
       std::vector<Vec3f> pts;
       std::vector<Vec2f> img;
       for (std::size_t i : c.vertices) {
         pts.push_back(point(i, j));
         img.push_back(image(pts.back()));
       }
-      out.strokes.push_back(detail::hatch_stroke(std::move(pts), std::move(img), c.closed, o.cast_hatch_width_px,
-                                                 grey));
+      out.strokes.push_back(
+          detail::hatch_stroke(std::move(pts), std::move(img), c.closed, o.cast_hatch_width_px, grey));
     }
   }
   if (!o.shade_blocks) return out;
@@ -202,7 +206,9 @@ float graded(float a, float b, std::size_t i, std::size_t count) {
 }  // namespace detail
 
 nlohmann::json LightOptions::to_json() const {
-  nlohmann::json j = {{"elevation_deg", elevation_deg}, {"azimuth_deg", azimuth_deg}, {"follow_camera", follow_camera},
+  nlohmann::json j = {{"elevation_deg", elevation_deg},
+                      {"azimuth_deg", azimuth_deg},
+                      {"follow_camera", follow_camera},
                       {"meaning", "direction the light travels"}};
   if (direction) j["direction"] = {direction->x(), direction->y(), direction->z()};
   return j;
@@ -239,7 +245,8 @@ Vec3f light_direction(const LightOptions& light, const view::Camera& camera) {
   Vec3f d;
   if (light.direction) {
     d = *light.direction;
-    if (!d.allFinite() || !(d.norm() > 0.f)) throw Error("stylize/light: the light direction must be a non-zero vector");
+    if (!d.allFinite() || !(d.norm() > 0.f))
+      throw Error("stylize/light: the light direction must be a non-zero vector");
   } else {
     const float e = light.elevation_deg * kDegToRad, a = light.azimuth_deg * kDegToRad;
     d = Vec3f(-std::cos(e) * std::cos(a), -std::cos(e) * std::sin(a), std::sin(e));
@@ -265,17 +272,15 @@ ShadowResult shadow_hatching(const ShadowInput& in, const ShadowOptions& o) {
     std::vector<LineShadow> per_line(in.lines.size());
     static const std::vector<std::uint8_t> kAllVisible;
     if (!ts.empty()) {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, in.lines.size()),
-                        [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                            const Polyline& l = in.lines[i];
-                            const bool casts = l.kind == LineKind::Ridge ||
-                                               (l.kind == LineKind::Valley && o.cast_from_valleys);
-                            if (!casts || l.size() < 2) continue;
-                            per_line[i] = line_shadow(in, l, in.visible.empty() ? kAllVisible : in.visible[i], ts, o,
-                                                      result.light);
-                          }
-                        });
+      tbb::parallel_for(
+          tbb::blocked_range<std::size_t>(0, in.lines.size()), [&](const tbb::blocked_range<std::size_t>& r) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+              const Polyline& l = in.lines[i];
+              const bool casts = l.kind == LineKind::Ridge || (l.kind == LineKind::Valley && o.cast_from_valleys);
+              if (!casts || l.size() < 2) continue;
+              per_line[i] = line_shadow(in, l, in.visible.empty() ? kAllVisible : in.visible[i], ts, o, result.light);
+            }
+          });
     }
     for (LineShadow& s : per_line) {
       result.casting_candidates += s.candidates;

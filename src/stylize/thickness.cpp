@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <string>
 
 #include "pcsketch/core/assert.h"
@@ -17,7 +18,7 @@ namespace pcsketch::stylize {
 
 namespace {
 
-constexpr double kRadToDeg = 57.295779513082320876798;
+constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 /// Cumulative image arc length at each vertex; the last entry (index #L) is the total including the closing segment
 /// of a closed line.
@@ -70,7 +71,7 @@ std::vector<float> taper(const std::vector<Vec2f>& image_points, const Thickness
   for (std::size_t i = 0; i < n; ++i) {
     const float from_end = std::min(s[i], total - s[i]);
     const float x = std::min(from_end / len, 1.f);
-    f[i] = o.brush_end_fraction + (1.f - o.brush_end_fraction) * std::sin(0.5f * 3.14159265f * x);
+    f[i] = o.brush_end_fraction + (1.f - o.brush_end_fraction) * std::sin(0.5f * std::numbers::pi_v<float> * x);
   }
   return f;
 }
@@ -82,16 +83,21 @@ void check(const ThicknessOptions& o) {
   if (!(o.cofi >= 0.f) || !(o.angle_arm_px >= 0.f) || !(o.brush_taper_px >= 0.f) ||
       !(o.brush_end_fraction >= 0.f && o.brush_end_fraction <= 1.f) ||
       !(o.angle_weight >= 0.f && o.angle_weight <= 1.f))
-    throw Error("stylize/thickness: cofi, angle arm and taper length must be >= 0; brush end fraction and angle "
-                "weight in [0, 1]");
+    throw Error(
+        "stylize/thickness: cofi, angle arm and taper length must be >= 0; brush end fraction and angle "
+        "weight in [0, 1]");
 }
 
 const char* name(ThicknessModel m) {
   switch (m) {
-    case ThicknessModel::Constant: return "constant";
-    case ThicknessModel::Depth: return "depth";
-    case ThicknessModel::Angle: return "angle";
-    case ThicknessModel::Combined: return "combined";
+    case ThicknessModel::Constant:
+      return "constant";
+    case ThicknessModel::Depth:
+      return "depth";
+    case ThicknessModel::Angle:
+      return "angle";
+    case ThicknessModel::Combined:
+      return "combined";
   }
   return "?";
 }
@@ -206,12 +212,15 @@ std::vector<float> stroke_widths(const Polyline& line, const std::vector<Vec3f>&
   for (std::size_t i = 0; i < n; ++i) {
     switch (o.model) {
       case ThicknessModel::Constant:
-      case ThicknessModel::Depth: w[i] = depth_w[i]; break;
-      case ThicknessModel::Angle: w[i] = angle_w[i]; break;
+      case ThicknessModel::Depth:
+        w[i] = depth_w[i];
+        break;
+      case ThicknessModel::Angle:
+        w[i] = angle_w[i];
+        break;
       case ThicknessModel::Combined:
-        w[i] = o.combination == Combination::Mean
-                   ? (1.f - o.angle_weight) * depth_w[i] + o.angle_weight * angle_w[i]
-                   : (o.rho_max > 0.f ? depth_w[i] * angle_w[i] / o.rho_max : 0.f);
+        w[i] = o.combination == Combination::Mean ? (1.f - o.angle_weight) * depth_w[i] + o.angle_weight * angle_w[i]
+                                                  : (o.rho_max > 0.f ? depth_w[i] * angle_w[i] / o.rho_max : 0.f);
         break;
     }
   }
@@ -273,20 +282,15 @@ std::vector<Stroke> line_strokes(const Polyline& line, const std::vector<std::ui
   const std::vector<float> widths = stroke_widths(line, projected, range, o);
   auto vis = [&](std::size_t i) { return flags.empty() || flags[i % n] != 0; };
 
-  // Start at a visibility change so that a closed line's wrap is an ordinary run boundary.
-  std::size_t start = 0;
-  bool uniform = true;
-  for (std::size_t i = 1; i < n; ++i)
-    if (vis(i) != vis(i - 1)) {
-      uniform = false;
-      if (start == 0) start = i;
-    }
-  if (line.closed && !uniform && vis(n - 1) != vis(0)) start = 0;
-  if (uniform) {
+  std::size_t first_change = n;
+  for (std::size_t i = 1; i < n && first_change == n; ++i)
+    if (vis(i) != vis(i - 1)) first_change = i;
+  if (first_change == n && (!line.closed || vis(n - 1) == vis(0))) {
     add_run(out, line, projected, widths, 0, n, {}, {}, vis(0), line.closed, camera, o.normalise_cofi);
     return out;
   }
-  if (!line.closed) start = 0;
+  // A closed line starts at a visibility change, so that its wrap is an ordinary run boundary.
+  const std::size_t start = line.closed && vis(n - 1) == vis(0) ? first_change : 0;
 
   auto midpoint = [&](std::size_t a, std::size_t b) {
     return RunEnd{true, 0.5f * (line.points[a] + line.points[b]), 0.5f * (widths[a] + widths[b])};
@@ -302,8 +306,7 @@ std::vector<Stroke> line_strokes(const Polyline& line, const std::vector<std::ui
     const bool has_next = !last || line.closed;
     if (has_next && vis(next) != vis(i)) {
       const RunEnd mid = midpoint(i, next);
-      add_run(out, line, projected, widths, run_first, run_count, head, mid, vis(i), false, camera,
-              o.normalise_cofi);
+      add_run(out, line, projected, widths, run_first, run_count, head, mid, vis(i), false, camera, o.normalise_cofi);
       head = mid;
       run_first = next;
       run_count = 0;

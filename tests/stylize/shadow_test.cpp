@@ -28,8 +28,14 @@ struct Scene {
 
   ShadowResult shade(const std::vector<Polyline>& lines, const ShadowOptions& o) const {
     static const std::vector<std::vector<std::uint8_t>> kAllVisible;
-    return shadow_hatching({.positions = cloud.positions, .normals = cloud.normals, .local_spacing = spacing,
-                            .scene = scene, .camera = camera, .spacing = h, .lines = lines, .visible = kAllVisible},
+    return shadow_hatching({.positions = cloud.positions,
+                            .normals = cloud.normals,
+                            .local_spacing = spacing,
+                            .scene = scene,
+                            .camera = camera,
+                            .spacing = h,
+                            .lines = lines,
+                            .visible = kAllVisible},
                            o);
   }
 };
@@ -127,7 +133,7 @@ TEST(PaperShadow, RidgeAbovePlaneCastsGradedHatching) {
       EXPECT_NEAR(p.z(), 0.2f * (1 - ts[j]), 1e-4f);
     }
     if (j > 0) {
-      EXPECT_GT(st.grey, r.strokes[j - 1].grey);  // lighter away from the line
+      EXPECT_GT(st.grey, r.strokes[j - 1].grey);                                // lighter away from the line
       EXPECT_GT(st.image_points[0].x(), r.strokes[j - 1].image_points[0].x());  // image +u is +x here
     }
   }
@@ -149,8 +155,8 @@ TEST(PaperShadow, RidgeAbovePlaneCastsGradedHatching) {
 TEST(PaperShadow, MissesAndOccludersBreakHatching) {
   // The line runs past the plane's edge (y > 1: the light ray misses), and a floating patch at z = 0.5 over
   // x ∈ [0.15, 0.65], |y| ≤ 0.25 hides the outermost hatch line (x = 0.2) from the viewer above.
-  const PointCloud cloud = concat(test::plane(1.f, {.n = 20000}), test::plane(0.25f, {.n = 1500, .seed = 7}),
-                                  Vec3f(0.4f, 0, 0.5f));
+  const PointCloud cloud =
+      concat(test::plane(1.f, {.n = 20000}), test::plane(0.25f, {.n = 1500, .seed = 7}), Vec3f(0.4f, 0, 0.5f));
   const Scene s(cloud, 0.03f, 0.014f, {.direction = Vec3d(0, 0, -1), .width = 400, .height = 400});
   const std::vector<Polyline> lines = {ridge({0, -0.5f, 0.2f}, {0, 1.5f, 0.2f}, 81)};
   const ShadowResult r = s.shade(lines, {.mode = ShadowMode::Paper, .light = {.direction = Vec3f(1, 0, -1)}});
@@ -210,13 +216,23 @@ TEST(Shadow, RejectsMismatchedInput) {
   const std::vector<float> short_spacing(10, 0.1f);
   const std::vector<Polyline> lines;
   const std::vector<std::vector<std::uint8_t>> vis;
-  EXPECT_THROW(shadow_hatching({.positions = s.cloud.positions, .normals = s.cloud.normals,
-                                .local_spacing = short_spacing, .scene = s.scene, .camera = s.camera, .spacing = 0.08f,
-                                .lines = lines, .visible = vis}),
+  EXPECT_THROW(shadow_hatching({.positions = s.cloud.positions,
+                                .normals = s.cloud.normals,
+                                .local_spacing = short_spacing,
+                                .scene = s.scene,
+                                .camera = s.camera,
+                                .spacing = 0.08f,
+                                .lines = lines,
+                                .visible = vis}),
                Error);
-  EXPECT_NO_THROW(shadow_hatching({.positions = s.cloud.positions, .normals = s.cloud.normals,
-                                   .local_spacing = short_spacing, .scene = s.scene, .camera = s.camera,
-                                   .spacing = 0.08f, .lines = lines, .visible = vis},
+  EXPECT_NO_THROW(shadow_hatching({.positions = s.cloud.positions,
+                                   .normals = s.cloud.normals,
+                                   .local_spacing = short_spacing,
+                                   .scene = s.scene,
+                                   .camera = s.camera,
+                                   .spacing = 0.08f,
+                                   .lines = lines,
+                                   .visible = vis},
                                   {.mode = ShadowMode::None}));
 }
 

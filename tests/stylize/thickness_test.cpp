@@ -39,8 +39,8 @@ TEST(Thickness, NearerLineIsThicker) {
     EXPECT_GT(mean(r.strokes[0].widths), mean(r.strokes[1].widths) + 0.5f);
   }
   // Pure depth model: the extremes of the drawing's depth range get exactly ρ_max and ρ_min.
-  const auto r = make_strokes(lines, cam, {}, {.model = ThicknessModel::Depth, .rho_min = 1, .rho_max = 4,
-                                               .brush = false});
+  const auto r =
+      make_strokes(lines, cam, {}, {.model = ThicknessModel::Depth, .rho_min = 1, .rho_max = 4, .brush = false});
   EXPECT_NEAR(r.depth_range.far - r.depth_range.near, 1.f, 1e-5f);
   for (float w : r.strokes[0].widths) EXPECT_NEAR(w, 4.f, 1e-4f);
   for (float w : r.strokes[1].widths) EXPECT_NEAR(w, 1.f, 1e-4f);
@@ -53,7 +53,8 @@ TEST(Thickness, SharperBendIsThicker) {
   for (int i = 1; i <= 20; ++i) l.points.emplace_back(1, 0.1f * static_cast<float>(i), 0);
   const float turn = 45.f * 3.14159265f / 180.f;  // the path turns by 45°: interior angle 135°
   for (int i = 1; i <= 10; ++i)
-    l.points.emplace_back(1 - 0.1f * std::sin(turn) * static_cast<float>(i), 2 + 0.1f * std::cos(turn) * static_cast<float>(i), 0);
+    l.points.emplace_back(1 - 0.1f * std::sin(turn) * static_cast<float>(i),
+                          2 + 0.1f * std::cos(turn) * static_cast<float>(i), 0);
   const view::Camera cam = view::make_camera(l.points, Vec3d::Zero());
   for (float arm : {0.f, 6.f}) {
     const auto r = make_strokes({l}, cam, {}, {.model = ThicknessModel::Angle, .angle_arm_px = arm, .brush = false});
@@ -64,8 +65,11 @@ TEST(Thickness, SharperBendIsThicker) {
   }
   // Paper's neighbours: 90° is level 4, 135° level 2 → widths 4/10 and 2/10 of ρ_max in the Paper mapping.
   const auto r = make_strokes({l}, cam, {},
-                              {.model = ThicknessModel::Angle, .rho_max = 3, .angle_arm_px = 0,
-                               .angle_width = AngleWidth::Paper, .brush = false});
+                              {.model = ThicknessModel::Angle,
+                               .rho_max = 3,
+                               .angle_arm_px = 0,
+                               .angle_width = AngleWidth::Paper,
+                               .brush = false});
   EXPECT_NEAR(r.strokes[0].widths[10], 1.2f, 1e-5f);
   EXPECT_NEAR(r.strokes[0].widths[30], 0.6f, 1e-5f);
 }
@@ -111,8 +115,8 @@ TEST(Thickness, HalfSegmentRuleExactValues) {
 TEST(Thickness, CofiScalesAndStrokesCarryHalves) {
   const std::vector<Polyline> lines = {straight({-1, 0, 0}, {1, 0, 0}, 5)};
   const view::Camera cam = view::make_camera(all_points(lines), Vec3d::Zero());
-  const auto r = make_strokes(lines, cam, {}, {.model = ThicknessModel::Constant, .rho_min = 1, .rho_max = 3,
-                                               .cofi = 1.5f, .brush = false});
+  const auto r = make_strokes(
+      lines, cam, {}, {.model = ThicknessModel::Constant, .rho_min = 1, .rho_max = 3, .cofi = 1.5f, .brush = false});
   const Stroke& s = r.strokes[0];
   ASSERT_EQ(s.half_widths.size(), 2 * s.segments());
   for (float w : s.widths) EXPECT_FLOAT_EQ(w, 3.f);  // (1 + 3)/2 · 1.5
@@ -122,8 +126,12 @@ TEST(Thickness, CofiScalesAndStrokesCarryHalves) {
 TEST(Thickness, BrushTapersEnds) {
   const std::vector<Polyline> lines = {straight({-1, 0, 0}, {1, 0, 0}, 201)};
   const view::Camera cam = view::make_camera(all_points(lines), Vec3d::Zero());
-  const ThicknessOptions o{.model = ThicknessModel::Constant, .rho_min = 2, .rho_max = 2, .brush = true,
-                           .brush_taper_px = 20, .brush_end_fraction = 0.25f};
+  const ThicknessOptions o{.model = ThicknessModel::Constant,
+                           .rho_min = 2,
+                           .rho_max = 2,
+                           .brush = true,
+                           .brush_taper_px = 20,
+                           .brush_end_fraction = 0.25f};
   const StrokesResult r = make_strokes(lines, cam, {}, o);
   const std::vector<float>& w = r.strokes[0].widths;
   EXPECT_FLOAT_EQ(w.front(), 0.5f);

@@ -85,10 +85,10 @@ struct ShadowOptions {
   /// n·l above thresholds[i]. 0.05 starts just past the terminator (noise-free), 0.5 adds cross-hatching where the
   /// surface turns clearly away from the light.
   std::vector<float> attached_levels = {0.05f, 0.5f};
-  float hatch_spacing_px = 6.f;    ///< distance between parallel hatch lines, px (readable at 1024 px, plotter-safe)
-  float hatch_angle_deg = 45.f;    ///< angle of the first family, degrees counter-clockwise from the image's +u
-  float cross_angle_deg = 90.f;    ///< each further family turns by this much (90: classic cross-hatching)
-  float attached_width_px = 0.6f;  ///< stroke width, px
+  float hatch_spacing_px = 6.f;       ///< distance between parallel hatch lines, px (readable at 1024 px, plotter-safe)
+  float hatch_angle_deg = 45.f;       ///< angle of the first family, degrees counter-clockwise from the image's +u
+  float cross_angle_deg = 90.f;       ///< each further family turns by this much (90: classic cross-hatching)
+  float attached_width_px = 0.6f;     ///< stroke width, px
   float attached_grey_light = 0.45f;  ///< grey of the first family
   float attached_grey_dark = 0.25f;   ///< grey of the last family (deeper shadow, darker ink)
   float mask_cell_px = 2.f;           ///< cell size of the image-space shading grid, px
@@ -112,7 +112,7 @@ struct ShadowInput {
   const std::vector<float>& local_spacing;  ///< #P, the radii the scene was built with (before its factor)
   const view::SurfaceScene& scene;          ///< the same points as oriented discs
   const view::Camera& camera;
-  float spacing = 0.f;                      ///< mean spacing h, model units
+  float spacing = 0.f;  ///< mean spacing h, model units
   /// Ridge and valley lines (other kinds are ignored by the paper mode).
   const std::vector<Polyline>& lines;
   /// Empty (all visible) or one entry per line, each empty or #L flags (0 = hidden); hidden vertices cast nothing.
@@ -135,8 +135,8 @@ struct ShadowResult {
 /// them from the viewer, joined along the line into hatch strokes; the blocks between successive hatch lines
 /// (the line itself first) become ShadeRegions whose grey grows away from the line.
 /// Attached mode: the points are splatted as oriented discs into an image grid (nearest front-facing disc per cell,
-/// its n·l, lightly smoothed); hatch lines at fixed angle and spacing are clipped to the cells with n·l above each family's
-/// threshold, with ends placed by interpolating n·l, and broken at depth jumps.
+/// its n·l, lightly smoothed); hatch lines at fixed angle and spacing are clipped to the cells with n·l above each
+/// family's threshold, with ends placed by interpolating n·l, and broken at depth jumps.
 /// @throws pcsketch::Error when array sizes disagree or h is not positive while a shadow mode is on.
 ShadowResult shadow_hatching(const ShadowInput& input, const ShadowOptions& options = {});
 
