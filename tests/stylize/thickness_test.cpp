@@ -74,6 +74,29 @@ TEST(Thickness, SharperBendIsThicker) {
   EXPECT_NEAR(r.strokes[0].widths[30], 0.6f, 1e-5f);
 }
 
+TEST(Thickness, CombinationRules) {
+  // A right angle (level 4) at the near end of an explicit depth range: t_depth = ρ_max, t_angle = ρ_min + 3/9·span.
+  Polyline l;
+  l.points = {{-1, 0, 0}, {0, 0, 0}, {0, 1, 0}};
+  const view::Camera cam = view::make_camera(l.points, Vec3d::Zero());
+  const float z = cam.project(l.points[1]).z();
+  ThicknessOptions o{.model = ThicknessModel::Combined,
+                     .rho_min = 1,
+                     .rho_max = 4,
+                     .angle_arm_px = 0,
+                     .depth_range = DepthRange{z, z + 1},
+                     .brush = false};
+  const float t_angle = 1.f + 3.f / 9.f * 3.f;
+  EXPECT_NEAR(make_strokes({l}, cam, {}, o).strokes[0].widths[1], 0.5f * (4.f + t_angle), 1e-5f);
+  o.angle_weight = 0.25f;
+  EXPECT_NEAR(make_strokes({l}, cam, {}, o).strokes[0].widths[1], 0.75f * 4.f + 0.25f * t_angle, 1e-5f);
+  o.combination = Combination::Product;
+  EXPECT_NEAR(make_strokes({l}, cam, {}, o).strokes[0].widths[1], 4.f * t_angle / 4.f, 1e-5f);
+  // Ends of an open line count as straight (level 1 = ρ_min).
+  EXPECT_NEAR(make_strokes({l}, cam, {}, o).strokes[0].widths[0], 4.f * 1.f / 4.f, 1e-5f);
+  EXPECT_THROW(make_strokes({l}, cam, {}, {.rho_min = 3, .rho_max = 1}), Error);
+}
+
 TEST(Thickness, AngleLevelsAtTable1BinEdges) {
   // Bins are closed on the right: the edge itself belongs to the sharper (higher) level.
   const double edges[] = {20, 30, 40, 50, 60, 80, 100, 120, 150, 180};
