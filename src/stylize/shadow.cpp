@@ -175,8 +175,6 @@ void check(const ShadowInput& in, const ShadowOptions& o) {
     if (!in.visible[i].empty() && in.visible[i].size() != in.lines[i].size())
       throw Error("stylize/shadow: line " + std::to_string(i) + " has " + std::to_string(in.lines[i].size()) +
                   " points but " + std::to_string(in.visible[i].size()) + " visibility flags");
-  if (!(in.spacing > 0.f) || !std::isfinite(in.spacing))
-    throw Error("stylize/shadow: the mean spacing h must be positive (got " + std::to_string(in.spacing) + ")");
   if (!(o.hatch_spacing_px > 0.f) || !(o.mask_cell_px > 0.f) || !(o.d > 0.f))
     throw Error("stylize/shadow: hatch spacing, mask cell and d must be positive");
 }
@@ -262,6 +260,11 @@ ShadowResult shadow_hatching(const ShadowInput& in, const ShadowOptions& o) {
   result.light = light_direction(o.light, in.camera);
   if (o.mode == ShadowMode::None) return result;
   check(in, o);
+  if (in.positions.empty() || !(in.spacing > 0.f) || !std::isfinite(in.spacing)) {
+    // A degenerate cloud (no points, or all coincident) has no surface to shade: an unshaded drawing, not an error.
+    result.warnings.push_back("shadow: no shading, the cloud has no point spacing (empty or degenerate cloud)");
+    return result;
+  }
 
   if (o.mode == ShadowMode::Paper || o.mode == ShadowMode::Both) {
     std::vector<float> ts;

@@ -225,6 +225,18 @@ TEST(Shadow, RejectsMismatchedInput) {
                                 .lines = lines,
                                 .visible = vis}),
                Error);
+  const std::vector<Vec3f> none;
+  const std::vector<float> no_spacing;
+  const ShadowResult empty = shadow_hatching({.positions = none,
+                                              .normals = none,
+                                              .local_spacing = no_spacing,
+                                              .scene = s.scene,
+                                              .camera = s.camera,
+                                              .spacing = 0.f,
+                                              .lines = lines,
+                                              .visible = vis});
+  EXPECT_TRUE(empty.strokes.empty());
+  EXPECT_EQ(empty.warnings.size(), 1u);
   EXPECT_NO_THROW(shadow_hatching({.positions = s.cloud.positions,
                                    .normals = s.cloud.normals,
                                    .local_spacing = short_spacing,

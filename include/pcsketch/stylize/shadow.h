@@ -9,6 +9,7 @@
 
 #include "pcsketch/core/drawing.h"
 #include "pcsketch/core/polyline.h"
+#include "pcsketch/core/report.h"
 #include "pcsketch/view/camera.h"
 #include "pcsketch/view/surface_scene.h"
 
@@ -126,6 +127,7 @@ struct ShadowResult {
   Vec3f light = Vec3f::Zero();         ///< unit light travel direction used
   std::size_t cast_vertices = 0;       ///< paper mode: line vertices whose light ray found a surface
   std::size_t casting_candidates = 0;  ///< paper mode: visible ridge/valley vertices tried
+  Warnings warnings;                   ///< e.g. nothing shaded because the cloud is degenerate
 };
 
 /// Shadow hatching of one view (paper §VI and the attached-shadow extension), per `options.mode`.
@@ -137,7 +139,8 @@ struct ShadowResult {
 /// Attached mode: the points are splatted as oriented discs into an image grid (nearest front-facing disc per cell,
 /// its n·l, lightly smoothed); hatch lines at fixed angle and spacing are clipped to the cells with n·l above each
 /// family's threshold, with ends placed by interpolating n·l, and broken at depth jumps.
-/// @throws pcsketch::Error when array sizes disagree or h is not positive while a shadow mode is on.
+/// An empty or degenerate cloud (h not positive) gives no shading and a warning.
+/// @throws pcsketch::Error when array sizes disagree, or for non-positive hatch spacing, mask cell or d.
 ShadowResult shadow_hatching(const ShadowInput& input, const ShadowOptions& options = {});
 
 }  // namespace pcsketch::stylize
