@@ -49,7 +49,7 @@ ShadingGrid splat(const ShadowInput& in, const ShadowOptions& o, const Vec3f& li
       const Vec3f& nrm = in.normals[i];
       const Vec3f uvd = cam.project(p);
       const float radius = o.splat_radius_factor * in.local_spacing[i];
-      if (!(uvd.z() > 0.f) || !nrm.allFinite() || !(radius > 0.f)) continue;
+      if (!(uvd.z() > 0.f) || !uvd.allFinite() || !nrm.allFinite() || !(radius > 0.f)) continue;
       const Vec3f ray = cam.ray_direction(p);
       const float nv = nrm.dot(ray);
       // Back-facing discs are never the visible side of an oriented surface; they are seen only through gaps
@@ -57,10 +57,12 @@ ShadingGrid splat(const ShadowInput& in, const ShadowOptions& o, const Vec3f& li
       if (nv > -1e-4f) continue;
       const float upp = cam.units_per_pixel(uvd.z());
       const float r_px = radius / upp;
-      const int x0 = std::max(0, static_cast<int>(std::floor((uvd.x() - r_px) / g.cell)));
-      const int x1 = std::min(g.w - 1, static_cast<int>(std::floor((uvd.x() + r_px) / g.cell)));
-      const int y0 = std::max(0, static_cast<int>(std::floor((uvd.y() - r_px) / g.cell)));
-      const int y1 = std::min(g.h - 1, static_cast<int>(std::floor((uvd.y() + r_px) / g.cell)));
+      // Clamped as floats first: a point near a perspective eye can project arbitrarily far.
+      auto cell_of = [&](float px, int count) {
+        return static_cast<int>(std::clamp(std::floor(px / g.cell), -1.f, static_cast<float>(count)));
+      };
+      const int x0 = std::max(0, cell_of(uvd.x() - r_px, g.w)), x1 = std::min(g.w - 1, cell_of(uvd.x() + r_px, g.w));
+      const int y0 = std::max(0, cell_of(uvd.y() - r_px, g.h)), y1 = std::min(g.h - 1, cell_of(uvd.y() + r_px, g.h));
       const float ray_depth = ray.dot(cam.forward);
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
