@@ -17,7 +17,8 @@ constexpr int kNone = -1;
 using Columns = std::array<int, 9>;
 
 bool is_comment_or_blank(std::string_view line) {
-  const std::size_t i = line.find_first_not_of(" \t\r\v\f");
+  // Separators alone (e.g. ",,," in a spreadsheet export) make a blank line too.
+  const std::size_t i = line.find_first_not_of(" \t\r\v\f,;");
   return i == std::string_view::npos || line[i] == '#' || line.substr(i).starts_with("//");
 }
 

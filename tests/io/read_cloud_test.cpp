@@ -143,6 +143,9 @@ TEST(ReadCloud, SniffingBeatsTheExtension) {
   EXPECT_EQ(read_point_cloud_from_memory(ply, "no_extension").format, "ply binary_little_endian");
   EXPECT_EQ(read_point_cloud_from_memory("OFF\n1 0 0\n1 2 3\n", "x.txt").format, "off");
   EXPECT_EQ(read_point_cloud_from_memory("1;2;3\n", "semicolons.txt").cloud.size(), 1u);
+  // Lines of separators only are blank (found by fuzzing: ".;" crashed the column count).
+  EXPECT_EQ(read_point_cloud_from_memory(";\n1,2,3\n, ,\n4,5,6\n", "blank.csv").cloud.size(), 2u);
+  EXPECT_THROW(read_point_cloud_from_memory(";", "blank.xyz"), Error);
 }
 
 TEST(ReadCloud, UtmTextKeepsSubMillimetrePrecision) {
