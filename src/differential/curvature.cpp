@@ -53,26 +53,39 @@ PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f&
   }
   // Tangent coordinates scaled to unit RMS radius: keeps the normal equations well conditioned at any model scale.
   const double scale = spread > 0 ? std::sqrt(static_cast<double>(count) / spread) : 1.0;
-  using Vec6 = Eigen::Matrix<double, 6, 1>;
-  Eigen::Matrix<double, 6, 6> normal_matrix = Eigen::Matrix<double, 6, 6>::Zero();
-  Vec6 rhs = Vec6::Zero();
-  const auto row = [&](const Vec3d& q) {
-    const double x = q.x() * scale, y = q.y() * scale;
-    return Vec6(x * x, x * y, y * y, x, y, 1.0);
-  };
+  // The normal equations need only the moments Σ x^a y^b (a + b ≤ 4) and Σ z x^a y^b (a + b ≤ 2).
+  double x4 = 0, x3y = 0, x2y2 = 0, xy3 = 0, y4 = 0, x3 = 0, x2y = 0, xy2 = 0, y3 = 0, x2 = 0, xy = 0, y2 = 0, x1 = 0,
+         y1 = 0, zx2 = 0, zxy = 0, zy2 = 0, zx = 0, zy = 0, z1 = 0;
   for (const Vec3d& q : local) {
-    const Vec6 phi = row(q);
-    normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(phi);
-    rhs += phi * q.z();
+    const double x = q.x() * scale, y = q.y() * scale, z = q.z();
+    const double xx = x * x, xy_ = x * y, yy = y * y;
+    x4 += xx * xx, x3y += xx * xy_, x2y2 += xx * yy, xy3 += xy_ * yy, y4 += yy * yy;
+    x3 += xx * x, x2y += xx * y, xy2 += x * yy, y3 += yy * y;
+    x2 += xx, xy += xy_, y2 += yy, x1 += x, y1 += y;
+    zx2 += z * xx, zxy += z * xy_, zy2 += z * yy, zx += z * x, zy += z * y, z1 += z;
   }
+  const double w0 = static_cast<double>(local.size());
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  Eigen::Matrix<double, 6, 6> normal_matrix;  // rows/columns: x², xy, y², x, y, 1
+  normal_matrix << x4, x3y, x2y2, x3, x2y, x2,  //
+      x3y, x2y2, xy3, x2y, xy2, xy,             //
+      x2y2, xy3, y4, xy2, y3, y2,               //
+      x3, x2y, xy2, x2, xy, x1,                 //
+      x2y, xy2, y3, xy, y2, y1,                 //
+      x2, xy, y2, x1, y1, w0;
+  const Vec6 rhs(zx2, zxy, zy2, zx, zy, z1);
   // A tiny ridge makes every system positive definite; in well-posed fits its effect is ~1e-9 relative, in
   // rank-deficient ones it zeroes the unseen coefficients.
-  normal_matrix.diagonal().array() += 1e-9 * static_cast<double>(local.size());
-  const Vec6 c = normal_matrix.selfadjointView<Eigen::Lower>().llt().solve(rhs);
+  normal_matrix.diagonal().array() += 1e-9 * w0;
+  const Vec6 c = normal_matrix.llt().solve(rhs);
   if (!c.allFinite()) return fit;
+  const auto model = [&](const Vec3d& q) {
+    const double x = q.x() * scale, y = q.y() * scale;
+    return c[0] * x * x + c[1] * x * y + c[2] * y * y + c[3] * x + c[4] * y + c[5];
+  };
 
   double squares = 0;
-  for (const Vec3d& q : local) squares += std::pow(q.z() - row(q).dot(c), 2);
+  for (const Vec3d& q : local) squares += std::pow(q.z() - model(q), 2);
   const double dof = local.size() > 6 ? static_cast<double>(local.size() - 6) : 1.0;
   fit.residual = std::sqrt(squares / dof);
 

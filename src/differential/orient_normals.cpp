@@ -7,15 +7,14 @@
 #include <limits>
 
 #include "differential/common.h"
-#include "neighbourhood/parallel_chunks.h"
 
 namespace pcsketch::differential {
 
 namespace {
 
-constexpr std::uint32_t kLevels = 4096;                    // quantisation of the edge weights
-constexpr std::uint16_t kNoEdge = 0xffff;                  // slot whose edge is listed by the other endpoint
-constexpr std::size_t kSortBlocks = 64;                    // fixed, so the sort does not depend on the thread count
+constexpr std::uint32_t kLevels = 4096;     // quantisation of the edge weights
+constexpr std::uint16_t kNoEdge = 0xffff;   // slot whose edge is listed by the other endpoint
+constexpr std::size_t kBlockPoints = 8192;  // points per block of the first, parallel Kruskal pass
 
 /// Union-find whose every node stores whether its normal must flip relative to its parent.
 class SignedUnionFind {
@@ -68,6 +67,22 @@ std::uint16_t level(const Vec3f& a, const Vec3f& b) {
   return static_cast<std::uint16_t>(std::min<float>(kLevels - 1, std::sqrt(1.f - c) * float(kLevels)));
 }
 
+/// A graph edge with its weight level.
+struct Edge {
+  std::uint32_t from, to;
+  std::uint16_t level;
+};
+
+/// `edges` stably sorted by level, by counting.
+std::vector<Edge> sort_by_level(const std::vector<Edge>& edges) {
+  std::vector<std::uint32_t> start(kLevels + 1, 0);
+  for (const Edge& e : edges) ++start[e.level + 1];
+  for (std::uint32_t l = 0; l < kLevels; ++l) start[l + 1] += start[l];
+  std::vector<Edge> sorted(edges.size());
+  for (const Edge& e : edges) sorted[start[e.level]++] = e;
+  return sorted;
+}
+
 }  // namespace
 
 OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>& normals,
@@ -82,67 +97,67 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
   const std::size_t stride = neighbourhoods.k;
   const std::size_t k = detail::neighbours_used(options.k, neighbourhoods);
 
-  // 1. Weight level of every undirected edge, listed once: by its smaller endpoint, or by the endpoint whose list
-  //    holds it when the other's does not (distance at or beyond that one's k-th neighbour; ties list it twice,
-  //    which is harmless).
-  std::vector<std::uint16_t> levels(n * k);
-  pcsketch::detail::parallel_chunks(n, {}, "", [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
+  // Every undirected edge is listed once: by its smaller endpoint, or by the endpoint whose list holds it when the
+  // other's does not (distance at or beyond that one's k-th neighbour; ties list it twice, which is harmless).
+  const auto edge_level = [&](std::size_t i, std::size_t m) -> std::uint16_t {
+    const std::uint32_t j = neighbourhoods.indices[i * stride + m];
+    const bool listed_by_j = neighbourhoods.distances[i * stride + m] < neighbourhoods.distances[j * stride + k - 1];
+    const bool usable = normals[i].squaredNorm() > 0 && normals[j].squaredNorm() > 0;
+    return usable && (i < j || !listed_by_j) ? level(normals[i], normals[j]) : kNoEdge;
+  };
+  const auto disagree = [&](std::uint32_t i, std::uint32_t j) -> std::uint8_t { return normals[i].dot(normals[j]) < 0; };
+
+  // 1. Kruskal inside fixed blocks of consecutive (spatially sorted) points, in parallel and in cache: each point
+  //    gets its block tree's root and its sign relative to that root; edges leaving the block are kept for step 2.
+  const std::size_t blocks = (n + kBlockPoints - 1) / kBlockPoints;
+  std::vector<std::uint32_t> block_root(n);
+  std::vector<std::uint8_t> block_flip(n);
+  std::vector<std::vector<Edge>> crossing(blocks);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    const std::size_t first = b * kBlockPoints, last = std::min(n, first + kBlockPoints);
+    std::vector<Edge> inside;
+    for (std::size_t i = first; i < last; ++i) {
       for (std::size_t m = 0; m < k; ++m) {
+        const std::uint16_t l = edge_level(i, m);
+        if (l == kNoEdge) continue;
         const std::uint32_t j = neighbourhoods.indices[i * stride + m];
-        const bool listed_by_j = neighbourhoods.distances[i * stride + m] < neighbourhoods.distances[j * stride + k - 1];
-        const bool usable = normals[i].squaredNorm() > 0 && normals[j].squaredNorm() > 0;
-        levels[i * k + m] = usable && (i < j || !listed_by_j) ? level(normals[i], normals[j]) : kNoEdge;
+        const Edge e{static_cast<std::uint32_t>(i), j, l};
+        (j >= first && j < last ? inside : crossing[b]).push_back(e);
       }
     }
-  });
-  report(0.2);
-
-  // 2. Counting sort of the edge slots by level, stable within a level: fixed blocks, per-block histograms.
-  const std::size_t slots = n * k;
-  const std::size_t block = (slots + kSortBlocks - 1) / kSortBlocks;
-  std::vector<std::uint32_t> histogram(kSortBlocks * kLevels, 0);
-  tbb::parallel_for(std::size_t{0}, kSortBlocks, [&](std::size_t b) {
-    std::uint32_t* h = histogram.data() + b * kLevels;
-    for (std::size_t s = b * block; s < std::min(slots, (b + 1) * block); ++s)
-      if (levels[s] != kNoEdge) ++h[levels[s]];
-  });
-  std::size_t edges = 0;
-  for (std::uint32_t l = 0; l < kLevels; ++l) {
-    for (std::size_t b = 0; b < kSortBlocks; ++b) {
-      const std::uint32_t count = histogram[b * kLevels + l];
-      histogram[b * kLevels + l] = static_cast<std::uint32_t>(edges);
-      edges += count;
+    SignedUnionFind forest(last - first);
+    const auto local = [&](std::uint32_t i) { return static_cast<std::uint32_t>(i - first); };
+    for (const Edge& e : sort_by_level(inside)) forest.join(local(e.from), local(e.to), disagree(e.from, e.to));
+    for (std::size_t i = first; i < last; ++i) {
+      const auto [root, flip] = forest.find(local(static_cast<std::uint32_t>(i)));
+      block_root[i] = static_cast<std::uint32_t>(root + first);
+      block_flip[i] = flip;
     }
-  }
-  std::vector<std::uint32_t> sorted(edges);
-  tbb::parallel_for(std::size_t{0}, kSortBlocks, [&](std::size_t b) {
-    std::uint32_t* next = histogram.data() + b * kLevels;
-    for (std::size_t s = b * block; s < std::min(slots, (b + 1) * block); ++s)
-      if (levels[s] != kNoEdge) sorted[next[levels[s]]++] = static_cast<std::uint32_t>(s);
   });
-  std::vector<std::uint16_t>().swap(levels);
-  report(0.4);
+  report(0.5);
 
-  // 3. Kruskal: strongest agreement first; each join fixes the relative sign of two trees.
-  SignedUnionFind forest(n);
-  std::size_t joins = 0;
-  for (const std::uint32_t s : sorted) {
-    const std::uint32_t i = static_cast<std::uint32_t>(s / k);
-    const std::uint32_t j = neighbourhoods.indices[i * stride + s % k];
-    if (forest.join(i, j, normals[i].dot(normals[j]) < 0 ? 1 : 0) && ++joins == n - 1) break;
+  // 2. Kruskal over the crossing edges (block order, then stably by level) joining the block trees by their roots.
+  std::vector<Edge> between;
+  for (auto& list : crossing) {
+    between.insert(between.end(), list.begin(), list.end());
+    std::vector<Edge>().swap(list);
   }
-  std::vector<std::uint32_t>().swap(sorted);
+  SignedUnionFind trees(n);
+  for (const Edge& e : sort_by_level(between)) {
+    trees.join(block_root[e.from], block_root[e.to],
+               block_flip[e.from] ^ block_flip[e.to] ^ disagree(e.from, e.to));
+  }
   report(0.8);
 
-  // 4. Apply the propagated signs and gather each component's centroid.
+  // 3. Apply the propagated signs and gather each component's centroid.
   std::vector<std::uint32_t> component(n);
   std::vector<std::uint32_t> component_of_root(n, std::numeric_limits<std::uint32_t>::max());
   std::vector<Vec3d> centroid;
   std::vector<std::size_t> members;
   std::vector<std::uint8_t> flipped(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto [root, flip] = forest.find(static_cast<std::uint32_t>(i));
+    const auto [root, tree_flip] = trees.find(block_root[i]);
+    const std::uint8_t flip = tree_flip ^ block_flip[i];
     if (component_of_root[root] == std::numeric_limits<std::uint32_t>::max()) {
       component_of_root[root] = static_cast<std::uint32_t>(centroid.size());
       centroid.push_back(Vec3d::Zero());
@@ -156,7 +171,7 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
   result.components = centroid.size();
   for (std::size_t c = 0; c < centroid.size(); ++c) centroid[c] /= static_cast<double>(members[c]);
 
-  // 5. Turn each component outward.
+  // 4. Turn each component outward.
   std::vector<double> vote(centroid.size(), 0.0);
   std::vector<double> farthest(centroid.size(), -1.0);
   for (std::size_t i = 0; i < n; ++i) {

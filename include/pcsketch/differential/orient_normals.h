@@ -37,9 +37,13 @@ struct OrientResult {
 
 /// Flips normals in place so that neighbours agree (propagation along a maximum-|n_i·n_j| spanning tree of the
 /// neighbour graph, Hoppe et al. 1992), then turns each component outward by `options.outward`.
-/// The spanning tree is Kruskal's over edge weights |n_i·n_j| quantised to 4096 levels (ties in edge order), built
-/// with a union-find that tracks relative signs: near-linear, deterministic, and the same tree Prim's propagation
-/// would grow up to the quantisation. Zero normals are left as they are.
+/// The tree is built by Kruskal's algorithm over weights |n_i·n_j| quantised to 4096 levels, with a union-find that
+/// tracks relative signs, in two rounds: first inside blocks of 8192 consecutive points (spatially sorted clouds
+/// make these compact patches), in parallel; then over the edges between blocks, joining the block trees. Linear
+/// time, deterministic for any thread count; it differs from one global tree only where a block's best internal
+/// path is worse than a detour outside it. Zero normals are left as they are. Expects spatially sorted points
+/// (reorder_spatially) for speed and block compactness; any order gives a consistent result.
+/// @throws pcsketch::Error if the sizes disagree
 OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>& normals,
                             const neighbourhood::Neighbourhoods& neighbourhoods, const OrientOptions& options = {});
 
