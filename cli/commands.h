@@ -30,5 +30,6 @@ void print_warnings(const GlobalOptions& global, const Warnings& warnings);
 void add_info_command(CLI::App& app, const GlobalOptions& global);
 void add_sample_command(CLI::App& app, const GlobalOptions& global);
 void add_draw_command(CLI::App& app, const GlobalOptions& global);
+void add_features_command(CLI::App&, const GlobalOptions&);
 
 }  // namespace pcsketch::cli

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   add_info_command(app, global);
   add_sample_command(app, global);
   add_draw_command(app, global);
+  add_features_command(app, global);
 
   std::optional<oneapi::tbb::global_control> thread_limit;
   app.parse_complete_callback([&] {

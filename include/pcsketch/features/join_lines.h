@@ -13,14 +13,15 @@ namespace pcsketch::features {
 struct JoinOptions {
   /// Paper's distance threshold α·r: endpoints p, q of two lines can join when |p − q| ≤ join_distance_alpha · r
   /// (r = the tracing radius). The paper reuses the detection α here; this is its own factor. 1.5 bridges a gap of
-  /// 1.5 r (6h at the default r = 4h): the breaks noise leaves in an edge, not the space between two features.
+  /// 1.5 r (9h at the default r = 6h): the breaks noise leaves in an edge, not the space between two features.
   float join_distance_alpha = 1.5f;
-  /// Paper's angle β, degrees: the end tangents must point at each other — each tangent within β of the direction
-  /// to the other endpoint, and the two within β of opposite. 30° joins lines broken along a gently curving feature
-  /// and never joins lines meeting at a corner (90° on a cube).
+  /// Paper's angle β, degrees: the end tangents (taken over 2r of each line) must be opposite within β. For a gap
+  /// longer than r each tangent must also aim at the other endpoint within β; for a shorter gap, where the lateral
+  /// offset of the ends (about h) would swamp that angle, each end must merely lie ahead of the other. 30° joins
+  /// lines broken along a gently curving feature and never joins lines meeting at a corner (90° on a cube).
   float join_angle_beta_deg = 30.f;
-  /// Lines shorter than this many h (after joining) are dropped as noise. 8h = two tracing steps at the default r:
-  /// shorter lines are a blob of a few feature points, not a feature.
+  /// Lines shorter than this many h (after joining) are dropped as noise. 8h, under two tracing steps at the
+  /// default r: shorter lines are a blob of a few feature points, not a feature.
   float min_length_factor = 8.f;
   /// Absolute minimum length in model units; overrides min_length_factor when set.
   std::optional<float> min_length;

@@ -15,8 +15,9 @@ namespace pcsketch::features {
 struct TraceOptions {
   /// Paper's neighbourhood radius r, in units of h: the feature points within r of the current centre decide the
   /// direction (PCA) and the next centre. Paper Fig. 4 uses r = 0.1…0.3 model units; a multiple of h works at any
-  /// scale. 4h bridges the gaps that noise and non-maximum suppression leave in a band of feature points while staying
-  /// below the size of small features.
+  /// scale. After non-maximum suppression a sharp edge keeps about one feature point per h or two of its length, so
+  /// 6h holds enough of them for a stable PCA and bridges the gaps noise leaves, while staying below the size of
+  /// small features.
   float radius_factor = 6.f;
   /// Absolute r in model units; overrides radius_factor when set.
   std::optional<float> radius;

@@ -1,0 +1,233 @@
+// pcsketch features IN -o OUT.ply [--lines OUT.json]: ridge/valley points and lines of a cloud (paper §IV.A), for
+// inspection in CloudCompare/MeshLab (per-point scalar fields) and for other tools (polylines as JSON).
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "commands.h"
+#include "pcsketch/core/error.h"
+#include "pcsketch/differential/surface.h"
+#include "pcsketch/features/ridge_valley_lines.h"
+#include "pcsketch/io/ply.h"
+#include "pcsketch/io/read_cloud.h"
+
+namespace pcsketch::cli {
+namespace {
+
+struct FeaturesArgs {
+  std::string in_path;
+  std::string out_path;
+  std::string lines_path;
+  differential::SurfaceOptions surface;
+  features::RidgeValleyOptions features;
+  bool ascii = false;
+};
+
+template <typename Enum>
+CLI::Option* add_enum(CLI::App* cmd, const std::string& name, Enum& target, const std::map<std::string, Enum>& names,
+                      const std::string& help) {
+  return cmd->add_option(name, target, help)->transform(CLI::CheckedTransformer(names, CLI::ignore_case));
+}
+
+// The per-point arrays in file order (analyse_surface reorders the cloud; source_index maps back).
+template <typename T>
+std::vector<T> in_file_order(const std::vector<T>& values, const std::vector<std::uint32_t>& source_index) {
+  if (source_index.empty()) return values;
+  std::vector<T> out(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) out[source_index[i]] = values[i];
+  return out;
+}
+
+void write_lines_json(const std::string& path, const PointCloud& cloud, const differential::Surface& surface,
+                      const features::RidgeValleyLines& result, const FeaturesArgs& args) {
+  nlohmann::json lines = nlohmann::json::array();
+  for (const Polyline& line : result.lines) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const Vec3f& p : line.points) {
+      const Vec3d w = cloud.origin + p.cast<double>();
+      points.push_back({w.x(), w.y(), w.z()});
+    }
+    nlohmann::json indices = nlohmann::json::array();
+    for (std::uint32_t i : line.point_index) indices.push_back(cloud.source_index.empty() ? i : cloud.source_index[i]);
+    lines.push_back({{"kind", to_string(line.kind)},
+                     {"closed", line.closed},
+                     {"points", std::move(points)},
+                     {"curvature", line.curvature},
+                     {"point_index", std::move(indices)}});
+  }
+  const features::DetectionResult& d = result.detection;
+  const nlohmann::json doc = {{"input", args.in_path},
+                              {"points", cloud.size()},
+                              {"spacing_h", surface.spacing},
+                              {"tracing_radius_r", result.radius},
+                              {"convex_extreme", d.convex_extreme},
+                              {"concave_extreme", d.concave_extreme},
+                              {"ridge_threshold", d.ridge_threshold},
+                              {"valley_threshold", d.valley_threshold},
+                              {"ridge_points", d.ridge_points},
+                              {"valley_points", d.valley_points},
+                              {"parameters", features::to_json(args.features)},
+                              {"timings_s",
+                               {{"detection", result.timings.detection},
+                                {"tracing", result.timings.tracing},
+                                {"joining", result.timings.joining}}},
+                              {"lines", std::move(lines)}};
+  std::ofstream out(path);
+  out << doc.dump(1) << "\n";
+  if (!out) throw Error(path + ": cannot write the lines JSON file");
+}
+
+void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
+  io::ReadResult read = io::read_point_cloud(args.in_path);
+  print_warnings(global, read.warnings);
+  PointCloud& cloud = read.cloud;
+  differential::SurfaceOptions surface_options = args.surface;
+  surface_options.progress = make_progress(global);
+  const differential::Surface surface = differential::analyse_surface(cloud, surface_options);
+  print_warnings(global, surface.warnings);
+  const features::RidgeValleyLines result = features::extract_ridge_valley_lines(cloud, surface, args.features);
+  print_warnings(global, result.warnings);
+
+  // Written in the file's point order, so the scalar fields line up with the input cloud.
+  std::vector<std::uint32_t> order(cloud.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  const std::vector<std::uint32_t> file_order = in_file_order(order, cloud.source_index);
+  PointCloud out = cloud;
+  if (!cloud.source_index.empty()) permute(out, file_order);
+  const std::vector<float> k1 = in_file_order(surface.curvature.k1, cloud.source_index);
+  const std::vector<float> k2 = in_file_order(surface.curvature.k2, cloud.source_index);
+  const std::vector<float> ki = in_file_order(result.detection.feature_curvature, cloud.source_index);
+  std::vector<std::uint8_t> labels(cloud.size());
+  for (std::size_t i = 0; i < labels.size(); ++i) labels[i] = static_cast<std::uint8_t>(result.detection.labels[i]);
+  labels = in_file_order(labels, cloud.source_index);
+  io::PlyWriteOptions write{.format = args.ascii ? io::PlyFormat::Ascii : io::PlyFormat::BinaryLittleEndian};
+  write.comments.push_back("pcsketch features " + args.in_path + ": k1 >= k2 principal curvatures (convex > 0), "
+                           "k_feature = the one of larger magnitude, label 0 none 1 ridge 2 valley");
+  io::write_ply(args.out_path, out,
+                {{"k1", std::span<const float>(k1)},
+                 {"k2", std::span<const float>(k2)},
+                 {"k_feature", std::span<const float>(ki)},
+                 {"label", std::span<const std::uint8_t>(labels)}},
+                write);
+  if (!args.lines_path.empty()) write_lines_json(args.lines_path, cloud, surface, result, args);
+
+  std::size_t ridges = 0;
+  for (const Polyline& l : result.lines) ridges += l.kind == LineKind::Ridge;
+  std::printf("%zu points, h = %g: %zu ridge points, %zu valley points; %zu ridge lines, %zu valley lines "
+              "(%zu joins, %zu short lines dropped)\n",
+              cloud.size(), static_cast<double>(surface.spacing), result.detection.ridge_points,
+              result.detection.valley_points, ridges, result.lines.size() - ridges, result.joins, result.dropped);
+  std::printf("detection %.3f s, tracing %.3f s, joining %.3f s\n", result.timings.detection, result.timings.tracing,
+              result.timings.joining);
+}
+
+}  // namespace
+
+void add_features_command(CLI::App& app, const GlobalOptions& global) {
+  auto args = std::make_shared<FeaturesArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "features", "Ridge/valley points and lines (paper IV.A): per-point k1, k2, label as PLY scalar fields, lines as JSON");
+  cmd->add_option("IN", args->in_path, "Point cloud: PLY, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ")->required();
+  cmd->add_option("-o,--output", args->out_path,
+                  "Output PLY: x y z, nx ny nz, k1 k2 k_feature (float, 1/model units), label (uchar: 0 none, "
+                  "1 ridge, 2 valley)")
+      ->required();
+  cmd->add_option("--lines", args->lines_path, "Also write the ridge/valley polylines (world coordinates) as JSON");
+  cmd->add_flag("--ascii", args->ascii, "Write ascii PLY instead of binary little-endian");
+
+  const std::string surf = "Surface analysis";
+  cmd->add_option("--neighbours", args->surface.neighbourhood.k, "Neighbours per point (normals, curvature)")
+      ->capture_default_str()
+      ->check(CLI::Range(3, 256))
+      ->group(surf);
+  cmd->add_flag("--recompute-normals", args->surface.recompute_normals,
+                "Ignore the file's normals, estimate them by PCA")
+      ->group(surf);
+
+  features::DetectionOptions& det = args->features.detection;
+  const std::string dgroup = "Detection";
+  cmd->add_option("--alpha", det.ridge_threshold_alpha,
+                  "Paper's alpha: |k| at least alpha times the extreme curvature of its side (smaller: more points)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0))
+      ->group(dgroup);
+  add_enum(cmd, "--detection", det.rule,
+           {{"salient", features::DetectionRule::Salient}, {"paper", features::DetectionRule::Paper}},
+           "salient (paper's rule + saliency floors + non-maximum suppression) or paper (the plain rule)")
+      ->group(dgroup);
+  add_enum(cmd, "--extreme", det.extreme,
+           {{"percentile", features::CurvatureExtreme::Percentile}, {"minmax", features::CurvatureExtreme::MinMax}},
+           "Extreme curvature of each side: percentile (robust) or minmax (the paper's)")
+      ->group(dgroup);
+  cmd->add_option("--extreme-percentile", det.extreme_percentile, "Percentile taken as the extreme, 0-100")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 100.0))
+      ->group(dgroup);
+  cmd->add_option("--saliency-floor", det.saliency_floor,
+                  "Salient rule: |k|*h must reach this (radius of curvature at most h/floor)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(dgroup);
+  cmd->add_option("--median-factor", det.median_factor, "Salient rule: |k| must reach this times the median |k|")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(dgroup);
+  cmd->add_flag("!--no-suppression", det.non_maximum_suppression,
+                "Salient rule: keep the whole band of high curvature (no non-maximum suppression across ridges)")
+      ->group(dgroup);
+  cmd->add_option("--suppression-cone", det.suppression_cone_deg,
+                  "Half-angle (degrees) around the principal direction in which neighbours compete")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 89.0))
+      ->group(dgroup);
+
+  features::TraceOptions& tr = args->features.tracing;
+  const std::string tgroup = "Tracing";
+  cmd->add_option("--radius", tr.radius_factor, "Paper's r: tracing radius in units of h (mean spacing)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber)
+      ->group(tgroup);
+  cmd->add_option("--radius-abs", tr.radius, "Tracing radius r in model units (overrides --radius)")
+      ->check(CLI::PositiveNumber)
+      ->group(tgroup);
+  cmd->add_option("--corridor", tr.corridor_fraction, "Corridor half-width around the direction, fraction of r")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 1.0))
+      ->group(tgroup);
+  cmd->add_option("--max-turn", tr.max_turn_deg, "Sharpest turn per step (degrees) before a line ends")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 90.0))
+      ->group(tgroup);
+
+  features::JoinOptions& jo = args->features.joining;
+  const std::string jgroup = "Joining";
+  cmd->add_option("--join-distance", jo.join_distance_alpha, "Join endpoints closer than this times r (paper: alpha*r)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(jgroup);
+  cmd->add_option("--beta", jo.join_angle_beta_deg, "Paper's beta: end tangents must face each other within beta, deg")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 90.0))
+      ->group(jgroup);
+  cmd->add_option("--min-length", jo.min_length_factor, "Drop lines shorter than this, in units of h")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(jgroup);
+  cmd->add_option("--min-length-abs", jo.min_length, "Minimum line length in model units (overrides --min-length)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(jgroup);
+  cmd->add_option("--smooth", jo.smoothing_iterations, "Laplacian smoothing passes (endpoints fixed), 0 = off")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100))
+      ->group(jgroup);
+  cmd->add_option("--smooth-weight", jo.smoothing_weight, "Weight of one smoothing pass, 0-1")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0))
+      ->group(jgroup);
+  cmd->callback([args, &global] { run_features(*args, global); });
+}
+
+}  // namespace pcsketch::cli
