@@ -51,10 +51,17 @@ CLI::Option* add_vec3(CLI::App* cmd, const std::string& name, const std::string&
       name, [flag, set](const std::string& s) { set(parse_vec3(flag, s)); }, help);
 }
 
+/// A flag taking one of the names of `names`, stored into `target` (enum values print badly through CLI11's
+/// transformers when the enum is a uint8_t, so the names are looked up here).
 template <class Enum>
 CLI::Option* add_enum(CLI::App* cmd, const std::string& name, Enum& target, const std::map<std::string, Enum>& names,
                       const std::string& help) {
-  return cmd->add_option(name, target, help)->transform(CLI::CheckedTransformer(names, CLI::ignore_case));
+  std::vector<std::string> keys;
+  for (const auto& entry : names) keys.push_back(entry.first);
+  return cmd
+      ->add_option_function<std::string>(
+          name, [&target, names](const std::string& s) { target = names.at(s); }, help)
+      ->check(CLI::IsMember(keys));
 }
 
 void write_all(const Drawing& drawing, const std::vector<std::string>& paths, const render::RenderOptions& render) {
@@ -128,6 +135,7 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   DrawOptions& o = args->options;
   CLI::App* cmd = app.add_subcommand(
       "draw", "Sketch drawing of a point cloud: contours, ridges, valleys, thickness, shadow hatching (paper Fig. 2)");
+  cmd->fallthrough();  // the global flags (-q, --threads) may also follow the subcommand
   cmd->add_option("INPUT", args->input, "Point cloud: PLY, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)")
       ->required();
   cmd->add_option("-o,--output", args->outputs, "Output file; format from the extension: .svg .png .pdf (repeatable)");
@@ -272,11 +280,36 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
       ->group(thick);
   cmd->add_flag("!--no-brush", o.thickness.brush, "No brush taper at the ends of lines")->group(thick);
 
+  // Shadow region (paper §VI).
+  const std::string shade = "Shadows (paper VI)";
+  add_enum(cmd, "--shadow", o.shadow.mode,
+           {{"none", stylize::ShadowMode::None}, {"paper", stylize::ShadowMode::Paper},
+            {"attached", stylize::ShadowMode::Attached}, {"both", stylize::ShadowMode::Both}},
+           "none, paper (hatching between ridge/valley lines and their projection along the light), attached "
+           "(hatching of the surface facing away from the light) or both")->group(shade);
+  add_vec3(cmd, "--light", "Light travel direction X,Y,Z (default: 45 degrees to xoy, parallel to xoz, Fig. 13)",
+           [&o](const Vec3d& v) { o.shadow.light.direction = v.cast<float>(); })->group(shade);
+  cmd->add_option("--light-elevation", o.shadow.light.elevation_deg, "Light angle to the xoy plane, degrees")
+      ->capture_default_str()->group(shade);
+  cmd->add_option("--light-azimuth", o.shadow.light.azimuth_deg, "Light rotation around z, degrees (0: xoz plane)")
+      ->capture_default_str()->group(shade);
+  cmd->add_flag("--light-follows-camera", o.shadow.light.follow_camera,
+                "Read the light direction in the camera's frame, so it turns with the view")->group(shade);
+  cmd->add_option("--shadow-d", o.shadow.d, "Paper's d (eq. 14): hatch lines at t = k*d along the shadow")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(shade);
+  cmd->add_option("--shadow-k", o.shadow.k_set, "Paper's k set (eq. 14), e.g. --shadow-k 0.0625 0.125 0.25 0.5")
+      ->capture_default_str()->expected(1, 16)->group(shade);
+  cmd->add_option("--hatch-spacing", o.shadow.hatch_spacing_px, "Attached hatching: distance between lines, pixels")
+      ->capture_default_str()->check(CLI::PositiveNumber)->group(shade);
+  cmd->add_flag("!--no-shade-blocks", o.shadow.shade_blocks, "Paper mode: no grey blocks, hatch strokes only")
+      ->group(shade);
+
   // What is drawn and how it is written.
   const std::string out = "Output";
   cmd->add_flag("!--no-contours", o.lines.contours, "Leave out contours")->group(out);
   cmd->add_flag("!--no-ridges", o.lines.ridges, "Leave out ridge lines")->group(out);
   cmd->add_flag("!--no-valleys", o.lines.valleys, "Leave out valley lines")->group(out);
+  cmd->add_flag("!--no-hatching", o.lines.hatching, "Leave out shadow hatching and shading")->group(out);
   cmd->add_flag("--plotter", o.render.plotter, "Pen-plotter output: centre-lines of one width, no grey fills")
       ->group(out);
   cmd->add_option("--pen-width", o.render.pen_width, "Plotter line width, pixels")
