@@ -64,14 +64,17 @@ ShadingGrid splat(const ShadowInput& in, const ShadowOptions& o, const Vec3f& li
       const int x0 = std::max(0, cell_of(uvd.x() - r_px, g.w)), x1 = std::min(g.w - 1, cell_of(uvd.x() + r_px, g.w));
       const int y0 = std::max(0, cell_of(uvd.y() - r_px, g.h)), y1 = std::min(g.h - 1, cell_of(uvd.y() + r_px, g.h));
       const float ray_depth = ray.dot(cam.forward);
+      // The cell's offset δ = upp·(du·right − dv·up) lies in the image plane at p's depth; its viewing ray meets the
+      // disc's plane at δ + s·ray with s = −n·δ/(n·ray). Expanded into scalars (right ⟂ up) for the inner loop.
+      const float n_right = nrm.dot(cam.right), n_up = nrm.dot(cam.up);
+      const float ray_right = ray.dot(cam.right), ray_up = ray.dot(cam.up);
+      const float r2 = radius * radius;
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
-          const float du = (static_cast<float>(x) + 0.5f) * g.cell - uvd.x();
-          const float dv = (static_cast<float>(y) + 0.5f) * g.cell - uvd.y();
-          // Offset in the image plane at p's depth, then along the viewing ray onto the disc's plane.
-          const Vec3f delta = (du * cam.right - dv * cam.up) * upp;
-          const float s = -nrm.dot(delta) / nv;
-          if ((delta + s * ray).squaredNorm() > radius * radius) continue;
+          const float du = ((static_cast<float>(x) + 0.5f) * g.cell - uvd.x()) * upp;
+          const float dv = ((static_cast<float>(y) + 0.5f) * g.cell - uvd.y()) * upp;
+          const float s = -(du * n_right - dv * n_up) / nv;
+          if (du * du + dv * dv + 2.f * s * (du * ray_right - dv * ray_up) + s * s > r2) continue;
           const float d = std::max(uvd.z() + s * ray_depth, 0.f);
           const std::uint64_t k = (static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(d)) << 32) | i;
           std::atomic<std::uint64_t>& slot = key[static_cast<std::size_t>(y) * g.w + x];
