@@ -39,6 +39,11 @@ std::pair<float, Vec2f> largest_gap(std::vector<float>& angles, std::span<const 
   return {best, Vec2f(std::cos(mid), std::sin(mid))};
 }
 
+/// Bit of the 45° sector holding direction c: quadrant q (by signs) is bit q, or bit q + 4 past its diagonal.
+unsigned octant_bit(const Vec2f& c) {
+  return 1u << ((c.x() >= 0 ? 0 : 1) + (c.y() >= 0 ? 0 : 2) + (std::abs(c.x()) >= std::abs(c.y()) ? 0 : 4));
+}
+
 /// The unit vector pointing to the empty side of heading d: side = +1 on the right of d in (u, v), −1 on the left.
 Vec2f side_of(const Vec2f& d, float side) { return side * Vec2f(d.y(), -d.x()); }
 
@@ -372,12 +377,28 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
     std::vector<char> is_boundary(valid.size(), 0);
     std::vector<Vec2f> outward(valid.size(), Vec2f::Zero());
     const float threshold = o.gap_threshold_deg * kDegToRad;
+    const bool octant_shortcut = o.gap_threshold_deg >= 90.f;
+    // Pre-filter: a point whose own 3D neighbours, projected, lie in all eight 45° sectors around it is inside the
+    // projection (nothing projects beyond the outline, so an outline point has empty sectors) — true of most points
+    // facing the viewer, and it costs no 2D query.
+    const bool use_3d_neighbours = octant_shortcut && neighbourhoods.size() == n && neighbourhoods.k > 0;
+    auto surrounded = [&](std::uint32_t i) {
+      const Vec2f p = cp.projected[i].head<2>();
+      unsigned octants = 0;
+      for (const std::uint32_t j : neighbourhoods.of(i))
+        if (cp.spacing_px[j] > 0) octants |= octant_bit(cp.projected[j].head<2>() - p);
+      return octants == 0xFFu;
+    };
+    // Queries run in the grid's cell order so that neighbouring queries scan the same cells (cache).
+    const std::vector<std::uint32_t>& grid_order = grid.order();
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, valid.size()), [&](const tbb::blocked_range<std::size_t>& range) {
       std::vector<std::pair<float, std::uint32_t>> near;
       std::vector<Vec2f> dirs;
       std::vector<float> angles;
-      for (std::size_t v = range.begin(); v != range.end(); ++v) {
+      for (std::size_t g = range.begin(); g != range.end(); ++g) {
+        const std::size_t v = grid_order[g];
         const float r = o.radius_factor * cp.spacing_px[valid[v]];
+        if (use_3d_neighbours && surrounded(valid[v])) continue;
         near.clear();
         grid.for_each_within(uv[v], r, [&](std::uint32_t j, float d2) {
           if (d2 > 1e-8f * r * r) near.emplace_back(d2, j);  // self and exact duplicates carry no direction
@@ -387,14 +408,16 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
           near.resize(o.k);
         }
         dirs.clear();
-        bool quadrant[4] = {false, false, false, false};
+        unsigned octants = 0;  // all eight 45° sectors occupied: no gap reaches 90°
         for (const auto& [d2, j] : near) {
           const Vec2f c = uv[j] - uv[v];
           dirs.push_back(c);
-          quadrant[(c.x() >= 0 ? 0 : 1) + (c.y() >= 0 ? 0 : 2)] = true;
+          octants |= octant_bit(c);
         }
+        if (octant_shortcut && octants == 0xFFu) continue;  // interior for sure: skip the angles
         const auto [gap, bisector] = largest_gap(angles, dirs);
-        const bool empty_quadrant = !(quadrant[0] && quadrant[1] && quadrant[2] && quadrant[3]);
+        // Quadrant q holds octants q and q + 4.
+        const bool empty_quadrant = ((octants | (octants >> 4)) & 0xFu) != 0xFu;
         if (!(gap > threshold || (o.quadrant_test && empty_quadrant))) continue;
         // Confirmation: outside a true outline the empty region goes on, while a sampling hole inside the outline
         // (random sampling leaves some of about r) is closed beyond it.

@@ -16,8 +16,8 @@ class PointGrid {
  public:
   using Vec = Eigen::Matrix<float, D, 1>;
 
-  /// Grid over `points` (which must outlive it) with cells of at least `cell` units.
-  PointGrid(std::span<const Vec> points, float cell) : points_(points) {
+  /// Grid over (a copy of) `points` with cells of at least `cell` units.
+  PointGrid(std::span<const Vec> points, float cell) {
     lo_ = Vec::Constant(0.f);
     Vec hi = Vec::Constant(0.f);
     if (!points.empty()) {
@@ -54,14 +54,20 @@ class PointGrid {
     order_.resize(points.size());
     std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < points.size(); ++i) order_[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+    // A copy in cell order: a query then scans contiguous memory instead of chasing indices.
+    sorted_.resize(points.size());
+    for (std::size_t k = 0; k < points.size(); ++k) sorted_[k] = points[order_[k]];
   }
+
+  /// Point indices in cell order: iterating queries in this order keeps the scanned cells in cache.
+  const std::vector<std::uint32_t>& order() const { return order_; }
 
   float cell() const { return cell_; }
 
   /// Calls f(index, squared distance) for every point within `radius` of q, in grid order (deterministic).
   template <class F>
   void for_each_within(const Vec& q, float radius, F&& f) const {
-    if (points_.empty()) return;
+    if (sorted_.empty()) return;
     const float r2 = radius * radius;
     Eigen::Matrix<std::int64_t, D, 1> a, b;
     for (int d = 0; d < D; ++d) {
@@ -75,9 +81,8 @@ class PointGrid {
     for (;;) {
       const std::size_t cell = linear(c);
       for (std::uint32_t k = start_[cell]; k < start_[cell + 1]; ++k) {
-        const std::uint32_t i = order_[k];
-        const float d2 = (points_[i] - q).squaredNorm();
-        if (d2 <= r2) f(i, d2);
+        const float d2 = (sorted_[k] - q).squaredNorm();
+        if (d2 <= r2) f(order_[k], d2);
       }
       int d = 0;
       while (d < D && ++c[d] > b[d]) {
@@ -101,12 +106,12 @@ class PointGrid {
     return index;
   }
 
-  std::span<const Vec> points_;
   Vec lo_;
   float cell_ = 1.f;
   std::int64_t dims_[D]{};
   std::vector<std::uint32_t> start_;
   std::vector<std::uint32_t> order_;
+  std::vector<Vec> sorted_;
 };
 
 }  // namespace pcsketch::view::detail
