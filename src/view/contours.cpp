@@ -400,21 +400,26 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
         const float r = o.radius_factor * cp.spacing_px[valid[v]];
         if (use_3d_neighbours && surrounded(valid[v])) continue;
         near.clear();
-        grid.for_each_within(uv[v], r, [&](std::uint32_t j, float d2) {
-          if (d2 > 1e-8f * r * r) near.emplace_back(d2, j);  // self and exact duplicates carry no direction
+        // Points within r filling all eight 45° sectors: no gap reaches 90°, the scan stops (interior).
+        unsigned filled = 0;
+        const bool scanned = grid.for_each_within_until(uv[v], r, [&](std::uint32_t j, float d2) {
+          if (d2 <= 1e-8f * r * r) return true;  // self and exact duplicates carry no direction
+          near.emplace_back(d2, j);
+          filled |= octant_bit(uv[j] - uv[v]);
+          return !(octant_shortcut && filled == 0xFFu);
         });
+        if (!scanned) continue;
         if (near.size() > o.k) {
           std::nth_element(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(o.k), near.end());
           near.resize(o.k);
         }
         dirs.clear();
-        unsigned octants = 0;  // all eight 45° sectors occupied: no gap reaches 90°
+        unsigned octants = 0;
         for (const auto& [d2, j] : near) {
           const Vec2f c = uv[j] - uv[v];
           dirs.push_back(c);
           octants |= octant_bit(c);
         }
-        if (octant_shortcut && octants == 0xFFu) continue;  // interior for sure: skip the angles
         const auto [gap, bisector] = largest_gap(angles, dirs);
         // Quadrant q holds octants q and q + 4.
         const bool empty_quadrant = ((octants | (octants >> 4)) & 0xFu) != 0xFu;

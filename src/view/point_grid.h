@@ -67,7 +67,16 @@ class PointGrid {
   /// Calls f(index, squared distance) for every point within `radius` of q, in grid order (deterministic).
   template <class F>
   void for_each_within(const Vec& q, float radius, F&& f) const {
-    if (sorted_.empty()) return;
+    for_each_within_until(q, radius, [&](std::uint32_t i, float d2) {
+      f(i, d2);
+      return true;
+    });
+  }
+
+  /// As for_each_within, stopping as soon as f returns false. Returns whether the scan ran to the end.
+  template <class F>
+  bool for_each_within_until(const Vec& q, float radius, F&& f) const {
+    if (sorted_.empty()) return true;
     const float r2 = radius * radius;
     Eigen::Matrix<std::int64_t, D, 1> a, b;
     for (int d = 0; d < D; ++d) {
@@ -75,21 +84,21 @@ class PointGrid {
                                       dims_[d] - 1);
       b[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((q[d] + radius - lo_[d]) / cell_)), 0,
                                       dims_[d] - 1);
-      if (q[d] + radius < lo_[d] || q[d] - radius > lo_[d] + cell_ * static_cast<float>(dims_[d])) return;
+      if (q[d] + radius < lo_[d] || q[d] - radius > lo_[d] + cell_ * static_cast<float>(dims_[d])) return true;
     }
     Eigen::Matrix<std::int64_t, D, 1> c = a;
     for (;;) {
       const std::size_t cell = linear(c);
       for (std::uint32_t k = start_[cell]; k < start_[cell + 1]; ++k) {
         const float d2 = (sorted_[k] - q).squaredNorm();
-        if (d2 <= r2) f(order_[k], d2);
+        if (d2 <= r2 && !f(order_[k], d2)) return false;
       }
       int d = 0;
       while (d < D && ++c[d] > b[d]) {
         c[d] = a[d];
         ++d;
       }
-      if (d == D) break;
+      if (d == D) return true;
     }
   }
 
