@@ -8,6 +8,7 @@
 // Each configuration runs in its own process (peak RSS of its own). Wall-clock timings on a shared machine: the
 // load average is printed with them.
 
+#include <ctime>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -23,10 +24,19 @@ namespace {
 
 constexpr int kViews = 2;
 
+/// CPU seconds of this process (all threads): on a loaded machine wall time overstates the cost, CPU time over the
+/// number of cores estimates the wall time on an idle one.
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 struct Measured {
   std::size_t points = 0, ridge_lines = 0;
   double analyse = 0, ridges = 0, scene = 0;
   view::ViewTimings t[kViews];
+  double cpu[kViews] = {};
   std::size_t boundary[kViews] = {}, contours[kViews] = {}, vertices[kViews] = {};
   std::size_t peak = 0;
 };
@@ -46,7 +56,9 @@ Measured measure(PointCloud cloud) {
   const view::CameraOptions cameras[kViews] = {{}, {.azimuth_deg = 60.0, .elevation_deg = 20.0}};
   for (int v = 0; v < kViews; ++v) {
     const view::Camera camera = view::make_camera(cloud.positions, cloud.origin, cameras[v]);
+    const double cpu_start = cpu_seconds();
     const view::ViewResult result = view::compute_view(cloud, surface, scene, lines.lines, camera);
+    m.cpu[v] = cpu_seconds() - cpu_start;
     m.t[v] = result.timings;
     m.boundary[v] = result.contour_points.boundary.size();
     m.contours[v] = result.contour_count;
@@ -62,7 +74,7 @@ std::string serialise(const Measured& m) {
   out << m.points << ' ' << m.ridge_lines << ' ' << m.analyse << ' ' << m.ridges << ' ' << m.scene << ' ' << m.peak;
   for (int v = 0; v < kViews; ++v)
     out << ' ' << m.t[v].contour_points << ' ' << m.t[v].contour_connection << ' ' << m.t[v].visibility << ' '
-        << m.boundary[v] << ' ' << m.contours[v] << ' ' << m.vertices[v];
+        << m.boundary[v] << ' ' << m.contours[v] << ' ' << m.vertices[v] << ' ' << m.cpu[v];
   return out.str();
 }
 
@@ -72,7 +84,7 @@ Measured parse(const std::string& text) {
   in >> m.points >> m.ridge_lines >> m.analyse >> m.ridges >> m.scene >> m.peak;
   for (int v = 0; v < kViews; ++v)
     in >> m.t[v].contour_points >> m.t[v].contour_connection >> m.t[v].visibility >> m.boundary[v] >> m.contours[v] >>
-        m.vertices[v];
+        m.vertices[v] >> m.cpu[v];
   return m;
 }
 
@@ -126,6 +138,7 @@ int run(int argc, char** argv) {
     row(label + "total", [v](const Measured& m) {
       return m.t[v].contour_points + m.t[v].contour_connection + m.t[v].visibility;
     });
+    row(label + "CPU time, all threads", [v](const Measured& m) { return m.cpu[v]; });
   }
   count_row("points", [](const Measured& m) { return m.points; });
   count_row("ridge/valley lines", [](const Measured& m) { return m.ridge_lines; });
