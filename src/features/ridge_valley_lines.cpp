@@ -36,6 +36,15 @@ RidgeValleyLines extract_ridge_valley_lines(const PointCloud& cloud, const diffe
   JoinResult joined = join_lines(std::move(traced.lines), traced.radius, surface.spacing, options.joining);
   result.timings.joining = seconds_since(start);
   result.lines = std::move(joined.lines);
+  const DetectionResult& d = result.detection;
+  if (d.ridge_points + d.valley_points == 0)
+    result.warnings.push_back("ridge/valley lines: no point passed the detection (ridge threshold " +
+                              std::to_string(d.ridge_threshold) + ", valley threshold " +
+                              std::to_string(d.valley_threshold) + "); lower alpha or the saliency floor for more");
+  else if (result.lines.empty())
+    result.warnings.push_back("ridge/valley lines: " + std::to_string(d.ridge_points + d.valley_points) +
+                              " ridge/valley points but no line long enough survived; lower the minimum length or "
+                              "raise the tracing radius");
   result.joins = joined.joins;
   result.dropped = joined.dropped;
   return result;

@@ -33,7 +33,7 @@ class KindTracer {
   std::size_t size() const { return points_.size(); }
   bool used(std::uint32_t i) const { return used_[i]; }
 
-  // Grows the line seeded at feature point `seed`; empty when the seed has no unused feature neighbour.
+  // Grows the line seeded at feature point `seed`; empty when it cannot grow (isolated seed, nothing ahead either way).
   std::vector<Vertex> trace(std::uint32_t seed, bool& closed) {
     closed = false;
     gather(points_[seed], radius_);
@@ -42,7 +42,7 @@ class KindTracer {
       return {};
     }
     const Vertex start = make_vertex(found_);
-    Vec3f dir = principal_axis(found_, start.position).value_or(Vec3f::UnitX());
+    Vec3f dir = principal_axis(found_, start.position).value_or(farthest_direction(found_, start.position));
     std::vector<Vertex> forward = grow(start, dir, &closed);
     std::vector<Vertex> backward;
     if (!closed) backward = grow(start, -dir, nullptr);
@@ -57,8 +57,6 @@ class KindTracer {
     use_up(line, closed);
     return line;
   }
-
-  const std::vector<Vec3f>& points() const { return points_; }
 
  private:
   // Unused feature points within `r` of `centre` into found_.
@@ -114,6 +112,14 @@ class KindTracer {
       ++count;
     }
     if (count > 0) v.position += lateral / static_cast<float>(count);
+  }
+
+  // Without a clear principal axis (two or three points, a blob): towards the farthest of the points.
+  Vec3f farthest_direction(const std::vector<std::uint32_t>& set, const Vec3f& centre) const {
+    Vec3f best = Vec3f::Zero();
+    for (std::uint32_t j : set)
+      if ((points_[j] - centre).squaredNorm() > best.squaredNorm()) best = points_[j] - centre;
+    return best.squaredNorm() > 0.f ? Vec3f(best.normalized()) : Vec3f::UnitX();
   }
 
   // Feature points of found_ ahead of `centre` along `dir` and inside the corridor, with their advance.

@@ -32,7 +32,7 @@ struct RidgeValleyLines {
   std::size_t joins = 0;        ///< joins made by the optimisation step
   std::size_t dropped = 0;      ///< lines dropped as too short
   RidgeValleyTimings timings;
-  Warnings warnings;
+  Warnings warnings;            ///< no feature point found, or none of them made a line long enough
 };
 
 /// Runs detect_ridge_valley_points, trace_lines and join_lines on a cloud analysed by differential::analyse_surface
