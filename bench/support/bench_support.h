@@ -28,6 +28,10 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_;
 };
 
+/// User + system CPU seconds of this process so far, all threads (getrusage). On a machine shared with other work,
+/// CPU time divided by the core count estimates the wall time on an idle machine better than the wall time does.
+double cpu_seconds();
+
 /// Peak resident set size of this process so far, bytes (getrusage; monotonic over the process's life, so measure
 /// each configuration in its own process: see run_isolated).
 std::size_t peak_rss_bytes();

@@ -30,7 +30,9 @@ struct Neighbourhoods {
   std::span<const float> distances_of(std::size_t i) const { return {distances.data() + i * k, k}; }
 };
 
-/// k-NN of every point, in parallel; deterministic for any thread count.
+/// k-NN of every point of the tree (`points` are the tree's points), in parallel; deterministic for any thread count.
+/// Ties are broken by index; each point itself is excluded by index, so its duplicates count as neighbours.
+/// @throws pcsketch::Error if the tree does not hold points.size() points
 Neighbourhoods compute_neighbourhoods(const KdTree& tree, const std::vector<Vec3f>& points,
                                       const NeighbourhoodOptions& options = {});
 
