@@ -287,14 +287,15 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
             {"attached", stylize::ShadowMode::Attached}, {"both", stylize::ShadowMode::Both}},
            "none, paper (hatching between ridge/valley lines and their projection along the light), attached "
            "(hatching of the surface facing away from the light) or both")->group(shade);
-  add_vec3(cmd, "--light", "Light travel direction X,Y,Z (default: 45 degrees to xoy, parallel to xoz, Fig. 13)",
+  add_vec3(cmd, "--light", "Light travel direction X,Y,Z (default: 45 degrees to xoy, parallel to xoz, Fig. 13; see --light-fixed)",
            [&o](const Vec3d& v) { o.shadow.light.direction = v.cast<float>(); })->group(shade);
   cmd->add_option("--light-elevation", o.shadow.light.elevation_deg, "Light angle to the xoy plane, degrees")
       ->capture_default_str()->group(shade);
   cmd->add_option("--light-azimuth", o.shadow.light.azimuth_deg, "Light rotation around z, degrees (0: xoz plane)")
       ->capture_default_str()->group(shade);
-  cmd->add_flag("--light-follows-camera", o.shadow.light.follow_camera,
-                "Read the light direction in the camera's frame, so it turns with the view")->group(shade);
+  cmd->add_flag("!--light-fixed", o.shadow.light.follow_camera,
+                "Light direction in world axes; by default it is read in the camera's frame and turns with the view "
+                "(the same for the paper's +z view)")->group(shade);
   cmd->add_option("--shadow-d", o.shadow.d, "Paper's d (eq. 14): hatch lines at t = k*d along the shadow")
       ->capture_default_str()->check(CLI::PositiveNumber)->group(shade);
   cmd->add_option("--shadow-k", o.shadow.k_set, "Paper's k set (eq. 14), e.g. --shadow-k 0.0625 0.125 0.25 0.5")

@@ -40,7 +40,10 @@ struct DrawOptions {
   view::CameraOptions camera;                  ///< default: the paper's orthographic view along +z, 1024 × 1024 px
   view::ViewOptions view;                      ///< contours (z_max, …) and visibility
   stylize::ThicknessOptions thickness;         ///< ρ_min, ρ_max, cofi, depth/angle/brush models
-  stylize::ShadowOptions shadow;               ///< light, d, k set, attached hatching (paper §VI)
+  /// Light, d, k set, attached hatching (paper §VI). The light turns with the camera here (stylize's own default
+  /// keeps it fixed in world axes): for the paper's +z view both are the paper's Fig. 13 light; for any other view a
+  /// world-fixed light often comes from behind and hatches nearly everything.
+  stylize::ShadowOptions shadow{.light = {.follow_camera = true}};
   render::RenderOptions render;                ///< hidden lines, plotter mode, page size (used by the writers)
   LineSelection lines;                         ///< which kinds of line are drawn
   /// Clouds with fewer points than this give an empty drawing and a warning instead of an analysis: a surface
