@@ -28,14 +28,16 @@ enum class OutlineConnection : std::uint8_t {
 /// seen at the point's depth, in pixels (orthographic: h · camera.scale).
 struct ContourOptions {
   // --- contour points extraction (paper: boundary points of the projected set) ---
-  /// 2D neighbourhood radius r, in units of h_px. The projection holds at least one layer (open scan seen face-on:
-  /// about 1/h² points per unit area), so r = 3 gives about 14 neighbours there, enough for a stable angular gap.
+  /// 2D neighbourhood radius r, in units of h_px. A random sampling has about 1/(4h²) points per unit area and a
+  /// closed surface projects at least two layers, so r = 3 sees about 28 neighbours (7 on a single face-on layer);
+  /// the confirmation below rejects what sparse single layers get wrong.
   float radius_factor = 3.0f;
-  /// Paper's k: at most the k nearest of the neighbours within r are used (bounds the cost in dense projections).
+  /// Paper's k: the largest gap is taken among at most the k nearest neighbours within r. The scan stops early,
+  /// as interior, once the points within r fill all eight 45° sectors (docs/views.md).
   std::size_t k = 32;
   /// A point is a boundary point when the largest angle between consecutive neighbour directions exceeds this, in
   /// degrees. A point on a straight outline sees 180°; 120° keeps the band of boundary points within r/2 of the
-  /// outline and rarely fires inside (the largest gap among ~14 random directions is ~80°).
+  /// outline and rarely fires inside (the largest gap among ~28 random directions is about 50°).
   float gap_threshold_deg = 120.0f;
   /// Paper: also a boundary point when one of the four quadrants of the (u, v) frame at the point is empty. Off by
   /// default: that test depends on the image axes and marks points up to 0.7 r inside a straight outline.
