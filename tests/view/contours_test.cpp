@@ -50,6 +50,18 @@ TEST(Contours, PaperDirectionGuidedRuleAlsoClosesTheSphere) {
   EXPECT_LT(max_circle_error(*contours[0], centre.head<2>(), view.camera.scale), 3.f);
 }
 
+TEST(Contours, PerspectiveSphereOutlineIsTheConeTangentCircle) {
+  const Analysed sphere(test::sphere(1.f, {.n = 30000}));
+  const ViewResult view = sphere.view(
+      {.projection = Projection::Perspective, .eye = Vec3d(0, 0, -4), .target = Vec3d::Zero(), .fov_deg = 40.0});
+  const auto contours = contours_of(view);
+  ASSERT_EQ(contours.size(), 1u);
+  EXPECT_TRUE(contours[0]->line.closed);
+  // The rays tangent to the sphere make a cone of half-angle asin(1/4) around the axis to the centre.
+  const float radius_px = view.camera.scale * std::tan(std::asin(0.25f));
+  EXPECT_LT(max_circle_error(*contours[0], view.camera.principal, radius_px), 1.f);
+}
+
 TEST(Contours, TorusAlongItsAxisHasRimAndHole) {
   const float R = 1.f, r = 0.35f;
   const Analysed torus(test::torus(R, r, {.n = 30000}));
