@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Regenerates the gallery of docs/gallery/: a 512 px drawing of the bundled sample and of five shared models, each
+# with the paper's Fig. 19 stage images (b contours, c ridge-valley lines, d fused, e thickness, f shadow).
+#
+#   scripts/gallery.sh [PCSKETCH_BINARY]    (default: build/pcsketch)
+#
+# The shared models are read from ../shared/data (next to the repository); missing ones are skipped.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=${1:-build/pcsketch}
+data=../shared/data
+out=docs/gallery
+size=512x512
+mkdir -p "$out"
+
+# name, input, view flags (the default view is the paper's: orthographic, looking along +z, y up).
+draw() {
+  local name=$1 input=$2
+  shift 2
+  if [[ ! -f $input ]]; then
+    echo "gallery: skipping $name ($input not found)" >&2
+    return
+  fi
+  echo "gallery: $name" >&2
+  "$bin" -q draw "$input" --size "$size" "$@" -o "$out/$name.png" --stages "$out/$name"
+}
+
+draw sample data/bunny.ply --azimuth -35 --elevation 15
+draw bunny "$data/bunny.off"
+draw camel "$data/camel.off" --view 1,0,0
+draw fandisk "$data/fandisk.off" --view -1,-1,-1
+draw kitten "$data/kitten.xyz" --view 0,0,-1
+draw building "$data/building.ply" --up 0,0,1 --view 1,0.7,-0.6
