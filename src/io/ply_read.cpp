@@ -229,8 +229,7 @@ int find_property(const Element& e, std::initializer_list<std::string_view> name
 
 // Colours stored as floats are in [0, 1]; integer colours in [0, 255].
 std::uint8_t to_color(double v, PlyScalar type) {
-  if (type == PlyScalar::F32 || type == PlyScalar::F64) v *= 255.0;
-  return static_cast<std::uint8_t>(std::clamp(std::round(std::isfinite(v) ? v : 0.0), 0.0, 255.0));
+  return to_channel(type == PlyScalar::F32 || type == PlyScalar::F64 ? v * 255.0 : v);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include <array>
 #include <bit>
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
 #include <cstring>

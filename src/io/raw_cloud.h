@@ -1,7 +1,9 @@
 #pragma once
 // What every format reader produces before the common finishing step (drop non-finite points, recentre).
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -46,6 +48,11 @@ RawCloud parse_xyz(const Source& source, Want want);
 RawCloud parse_pcd(const Source& source, Want want);
 RawCloud parse_off(const Source& source, Want want);
 RawCloud parse_obj(const Source& source, Want want);
+
+/// A colour channel from a number in [0, 255] (rounded, clamped; non-finite gives 0).
+inline std::uint8_t to_channel(double v) {
+  return static_cast<std::uint8_t>(std::clamp(std::round(std::isfinite(v) ? v : 0.0), 0.0, 255.0));
+}
 
 /// Appends the triangles of a polygon as a fan around its first corner (nothing for fewer than 3 corners).
 void add_fan(std::span<const std::uint32_t> polygon, std::vector<std::array<std::uint32_t, 3>>& faces);

@@ -145,12 +145,7 @@ RawCloud parse_xyz(const Source& src, Want) {
     }
     raw.positions.emplace_back(v[0], v[1], v[2]);
     if (has_normals) raw.normals.emplace_back(float(v[3]), float(v[4]), float(v[5]));
-    if (has_colors) {
-      const auto to_u8 = [](double x) {
-        return static_cast<std::uint8_t>(std::clamp(std::round(std::isfinite(x) ? x : 0.0), 0.0, 255.0));
-      };
-      raw.colors.push_back({to_u8(v[6]), to_u8(v[7]), to_u8(v[8])});
-    }
+    if (has_colors) raw.colors.push_back({to_channel(v[6]), to_channel(v[7]), to_channel(v[8])});
   }
   return raw;
 }
