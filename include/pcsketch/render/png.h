@@ -8,7 +8,7 @@
 
 namespace pcsketch::render {
 
-/// width × height pixels (RGB, white background, cairo's default anti-aliasing).
+/// width × height pixels, 8-bit greyscale (every ink is a grey), white background, cairo's default anti-aliasing.
 /// @throws pcsketch::Error for an image size of zero or above 32767, or if the file cannot be written.
 void write_png(const Drawing& drawing, const std::filesystem::path& path, const RenderOptions& options = {});
 
