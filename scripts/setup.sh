@@ -13,4 +13,7 @@ $SUDO apt-get install -y -q --no-install-recommends \
   clang libclang-rt-14-dev libxml2-utils
 cmake --preset release
 cmake --build --preset release
-./build/release/pcsketch info data/bunny.ply
+mkdir -p out
+./build/release/pcsketch draw data/bunny.ply --azimuth -35 --elevation 15 \
+  -o out/bunny.svg -o out/bunny.png -o out/bunny.pdf --json out/bunny.json
+echo "setup: drew the bundled sample into out/bunny.{svg,png,pdf,json}"
