@@ -69,15 +69,25 @@ class HeapKnn {
       out_[count_++] = c;
       std::push_heap(out_, out_ + count_);
     } else if (c < out_[0]) {
-      std::pop_heap(out_, out_ + count_);
-      out_[count_ - 1] = c;
-      std::push_heap(out_, out_ + count_);
+      sift_down(c);
     }
     return true;
   }
-  void finish() { std::sort_heap(out_, out_ + count_); }
+  void finish() { std::sort(out_, out_ + count_); }
 
  private:
+  /// Replaces the root by `c` and restores the max-heap: one pass down instead of pop_heap + push_heap.
+  void sift_down(const Candidate& c) {
+    std::size_t m = 0;
+    for (std::size_t child = 1; child < count_; child = 2 * m + 1) {
+      if (child + 1 < count_ && out_[child] < out_[child + 1]) ++child;
+      if (!(c < out_[child])) break;
+      out_[m] = out_[child];
+      m = child;
+    }
+    out_[m] = c;
+  }
+
   std::size_t capacity_;
   std::size_t count_ = 0;
   Candidate* out_;
