@@ -136,6 +136,27 @@ double density(const neighbourhood::Neighbourhoods& neighbourhoods) {
   return median(rho);
 }
 
+/// Neighbours of the smaller fit that separates noise from shape misfit (the point itself makes 6 + 6 dof).
+constexpr std::size_t kInnerFit = 11;
+
+/// Noise σ̂ from the first-pass residuals. A residual mixes noise, the same at any fit size, with the misfit of
+/// the shape beyond a quadric (cubic terms ~ r³, so its square grows as k³ at fixed density). The median squared
+/// residuals over the shared k and over the nearest kInnerFit neighbours, normalised by their ratio on pure noise
+/// (medians of χ²_ν/ν), give the noise share f of the outer one: q = c + (1 − c)·f with c = (kInnerFit/k)³.
+/// σ̂ = √f · median residual: on pure noise as before, on clean coarse meshes near 0 (see docs/geometry.md).
+double noise_estimate(const std::vector<double>& residual, std::vector<double>& inner_residual, std::size_t k) {
+  std::vector<double> outer = residual;
+  const double outer_median = median(outer);
+  if (inner_residual.empty() || !(outer_median > 0)) return outer_median;
+  const double inner_median = median(inner_residual);
+  // Median of χ²_ν/ν for ν = 6 (the inner fit's dof) over ν = 11 (dof at k = 16), the ratio on pure noise.
+  const double pure_noise_ratio = k == 16 ? 0.891 / 0.940 : 1.0;
+  const double q = (inner_median * inner_median) / (outer_median * outer_median) / pure_noise_ratio;
+  const double c = std::pow(static_cast<double>(kInnerFit) / static_cast<double>(k), 3);
+  const double noise_share = std::clamp((q - c) / (1 - c), 0.0, 1.0);
+  return std::sqrt(noise_share) * outer_median;
+}
+
 Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                    const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree* given_tree,
                    const CurvatureOptions& options) {
@@ -149,6 +170,7 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   result.dir1.resize(n);
   result.dir2.resize(n);
   std::vector<double> residual(n);
+  std::vector<double> inner_residual;  // first pass only: residual of the fit over the nearest kInnerFit neighbours
 
   std::optional<neighbourhood::KdTree> own_tree;
   const auto run = [&](std::size_t k, bool from_tree) {
@@ -167,6 +189,7 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
           count = found.size();
         }
         const PointFit fit = fit_point(points, i, normals[i], nb, count);
+        if (!inner_residual.empty()) inner_residual[i] = fit_point(points, i, normals[i], nb, kInnerFit).residual;
         result.k1[i] = fit.k1;
         result.k2[i] = fit.k2;
         result.dir1[i] = fit.dir1;
@@ -182,14 +205,15 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
     const std::size_t k = std::min(options.k, available);
     run(k, k > shared);
   } else {
+    if (shared >= kInnerFit + 4) inner_residual.resize(n);
     run(shared, false);
-    std::vector<double> sorted_residual = residual;
-    result.noise_sigma = static_cast<float>(median(sorted_residual));
+    result.noise_sigma = static_cast<float>(noise_estimate(residual, inner_residual, shared));
     if (options.adapt_to_noise && options.noise_tolerance > 0 && shared > 0) {
       const double wanted =
           8.0 * result.noise_sigma * std::sqrt(kPi * density(neighbourhoods)) / options.noise_tolerance;
       const std::size_t k = std::min({static_cast<std::size_t>(std::ceil(wanted)), options.max_k, available});
-      if (k > shared) run(k, true);
+      // The fit's curvature noise falls as 1/√k: under 1.25·shared (< 11% less noise) the refit is not worth it.
+      if (4 * k > 5 * shared) run(k, true);
       if (wanted > static_cast<double>(options.max_k) && options.max_k < available)
         result.warnings.push_back("curvature: the noise (σ ≈ " + std::to_string(result.noise_sigma) +
                                   ") calls for fits over " + std::to_string(static_cast<std::size_t>(wanted)) +
