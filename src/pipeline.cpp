@@ -87,9 +87,10 @@ struct StyleRequest {
   stylize::ThicknessOptions thickness;
 };
 
-/// Shadow hatching of the view's visible ridge and valley lines (as selected), appended to the drawing.
+/// Shadow hatching of the view's visible ridge and valley lines (as selected), appended to the drawing; its warnings
+/// are appended to `warnings`.
 void add_shadows(const Prepared& prepared, const view::ViewResult& view, const LineSelection& selection,
-                 const stylize::ShadowOptions& options, Drawing& drawing) {
+                 const stylize::ShadowOptions& options, Drawing& drawing, Warnings& warnings) {
   std::vector<Polyline> lines;
   std::vector<std::vector<std::uint8_t>> visible;
   for (const view::ViewLine& v : view.lines) {
@@ -104,18 +105,21 @@ void add_shadows(const Prepared& prepared, const view::ViewResult& view, const L
   drawing.strokes.insert(drawing.strokes.end(), std::make_move_iterator(shadows.strokes.begin()),
                          std::make_move_iterator(shadows.strokes.end()));
   drawing.regions = std::move(shadows.regions);
+  warnings.insert(warnings.end(), shadows.warnings.begin(), shadows.warnings.end());
 }
 
-/// Lines with thickness, then (when selected) shadow hatching; adds the seconds spent to `timings`.
+/// Lines with thickness, then (when selected) shadow hatching; adds the seconds spent to `timings` and the shadow
+/// step's warnings to `warnings`.
 Drawing style(const Prepared& prepared, const view::ViewResult& view, const StyleRequest& request,
-              const stylize::ShadowOptions& shadow, const nlohmann::json& parameters, Timings& timings) {
+              const stylize::ShadowOptions& shadow, const nlohmann::json& parameters, Timings& timings,
+              Warnings& warnings) {
   auto start = Clock::now();
   Drawing d = empty_drawing(view.camera, prepared.cloud.origin, parameters);
   d.strokes = line_strokes(view, request.lines, request.thickness);
   timings.drawing += seconds_since(start);
   if (request.lines.hatching && shadow.mode != stylize::ShadowMode::None) {
     start = Clock::now();
-    add_shadows(prepared, view, request.lines, shadow, d);
+    add_shadows(prepared, view, request.lines, shadow, d, warnings);
     timings.shadows += seconds_since(start);
   }
   return d;
@@ -244,7 +248,8 @@ DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera
     return result;
   }
   const view::ViewResult v = compute_view(prepared, camera, options, result.timings, result.warnings);
-  result.drawing = style(prepared, v, {options.lines, options.thickness}, options.shadow, parameters, result.timings);
+  result.drawing = style(prepared, v, {options.lines, options.thickness}, options.shadow, parameters, result.timings,
+                         result.warnings);
   return result;
 }
 
@@ -276,11 +281,12 @@ std::vector<std::pair<std::string, Drawing>> stage_drawings(const Prepared& prep
       out.emplace_back(column.first, empty_drawing(camera, prepared.cloud.origin, parameters));
     return out;
   }
+  // No warnings output here: they are the ones draw_view reports for the same camera.
   Timings timings;
   Warnings warnings;
   const view::ViewResult v = compute_view(prepared, camera, options, timings, warnings);
   for (const auto& [stem, request] : columns)
-    out.emplace_back(stem, style(prepared, v, request, options.shadow, parameters, timings));
+    out.emplace_back(stem, style(prepared, v, request, options.shadow, parameters, timings, warnings));
   return out;
 }
 

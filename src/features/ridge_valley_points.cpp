@@ -100,15 +100,20 @@ DetectionResult detect_ridge_valley_points(const std::vector<Vec3f>& points, con
       else if (-ki >= valley_min) label = PointLabel::Valley;
       if (label != PointLabel::None && suppress) {
         // A neighbour across the ridge (within the cone around dir) with a stronger curvature of the same sign wins;
-        // equal values are broken by index so that exactly one of two tied points survives.
+        // equal values are broken by index so that exactly one of two tied points survives. A stronger feature of the
+        // opposite sign wins too: the quadric fit around a sharp edge overshoots into a weaker lobe of the other sign
+        // beside it (a valley line 1–2h off a convex edge), and two real features closer than the fit's support are
+        // not resolved by it anyway.
         const Vec3f& dir = feature_direction(curvature, i);
         const float sign = label == PointLabel::Ridge ? 1.f : -1.f;
+        const float opposite_min = label == PointLabel::Ridge ? valley_min : ridge_min;
+        const float kself = sign * ki;
         for (std::uint32_t j : neighbourhoods.of(i)) {
           const Vec3f offset = points[j] - points[i];
           const float along = std::abs(offset.dot(dir));
           if (along < cone_cos * offset.norm() || along == 0.f) continue;
-          const float kj = sign * k[j], kself = sign * ki;
-          if (kj > kself || (kj == kself && j < i)) {
+          const float kj = sign * k[j];
+          if (kj > kself || (kj == kself && j < i) || (-kj > kself && -kj >= opposite_min)) {
             label = PointLabel::None;
             break;
           }

@@ -101,14 +101,19 @@ struct Analysed {
   RidgeValleyLines result;
 };
 
-// The pipeline as a user runs it: normals estimated from the points (a scan has none), then the three steps.
-Analysed run(PointCloud cloud, const RidgeValleyOptions& options = {}) {
-  cloud.normals.clear();
+// The surface analysis (with the cloud's normals, if it has them), then the three steps.
+Analysed analyse(PointCloud cloud, const RidgeValleyOptions& options = {}) {
   Analysed r;
   r.surface = differential::analyse_surface(cloud);
   r.result = extract_ridge_valley_lines(cloud, r.surface, options);
   r.cloud = std::move(cloud);
   return r;
+}
+
+// The pipeline as a user runs it on a scan: normals estimated from the points, then the three steps.
+Analysed run(PointCloud cloud, const RidgeValleyOptions& options = {}) {
+  cloud.normals.clear();
+  return analyse(std::move(cloud), options);
 }
 
 std::vector<Segment> cube_edges(float a) {
@@ -149,6 +154,21 @@ TEST(RidgeValleyLines, NoisyCubeEdgesAreRidges) {
   const float sigma = 0.001f * 2.f * std::sqrt(3.f) * a;  // 0.1% of the diagonal
   const Analysed r = run(test::cube(a, {.n = 30000, .seed = 7, .noise_sigma = sigma}));
   expect_cube_edges_traced(r, a);
+}
+
+TEST(RidgeValleyLines, NoValleysBesideTheEdgesOfASparseCube) {
+  // At 12k points with the exact face normals (as `draw` keeps them) the quadric fit next to a convex edge overshoots
+  // into a weaker concave lobe 1–2h off the edge on the face, which passed every threshold of the Salient rule and
+  // gave a short valley line (seed 42). Only the stronger convex edge beside it may win.
+  for (const std::uint32_t seed : {42u, 3u, 11u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Analysed r = analyse(test::cube(1.f, {.n = 12000, .seed = seed}));
+    const float h = r.surface.spacing;
+    const auto ridges = of_kind(r.result.lines, LineKind::Ridge);
+    EXPECT_TRUE(of_kind(r.result.lines, LineKind::Valley).empty());
+    // The edges are still ridges (0.76–0.84 covered within 2h at this density; 0.77–0.86 before the fix).
+    EXPECT_GE(coverage(cube_edges(1.f), ridges, h, 2.f * h).fraction(), 0.7);
+  }
 }
 
 TEST(RidgeValleyLines, SameOutputForOneAndTwoThreads) {
@@ -286,8 +306,10 @@ TEST(RidgeValleyLines, FandiskVertices) {
   ASSERT_EQ(read.cloud.origin, mesh.origin);
   // Known shortfall: on the 6,475 non-uniform CAD vertices (large triangles between dense edge strips) the
   // 16-neighbour curvature flags points within 2h of only about 80% of the convex and 86% of the concave sharp edges,
-  // and the lines cover 70% and 60% of them. This guards that level; the 85% holds for the area-uniform sample.
-  expect_fandisk_edges(run(std::move(read.cloud)), sharp_edges(mesh, 40.f), 0.65, 0.55);
+  // and the lines cover 61% and 62% of them (70% and 60% before opposite-sign suppression: where the strips put a
+  // convex and a concave edge within one fit's support, the weaker one loses). This guards that level; the issue's
+  // 85% holds for the area-uniform sample.
+  expect_fandisk_edges(run(std::move(read.cloud)), sharp_edges(mesh, 40.f), 0.58, 0.55);
 }
 
 }  // namespace

@@ -75,6 +75,26 @@ TEST(DetectRidgeValleyPoints, ValleysMirrorRidges) {
   EXPECT_LT(r.valley_threshold, 0.f);
 }
 
+// Peak curvature ±1 at `centre`, falling by 0.3 per point over 2 points each side, then a side lobe of the opposite
+// sign (0.3) at 3 points: the overshoot of a quadric fit beside a sharp edge.
+float crest_with_side_lobes(int x, int centre, float sign) {
+  const int d = std::abs(x - centre);
+  if (d <= 2) return sign * (1.f - 0.3f * static_cast<float>(d));
+  return d == 3 ? -sign * 0.3f : 0.f;
+}
+
+TEST(DetectRidgeValleyPoints, SideLobesOfTheOppositeSignAreSuppressed) {
+  // A valley at x = 10 and a ridge at x = 28, each with lobes of the other sign beside it. The lobes pass every
+  // threshold (0.3 ≥ 0.2 · extreme and ≥ the floors) and are the largest of their sign across their own direction,
+  // but a stronger feature of the other sign is their neighbour across it: only the two crests remain.
+  const Grid g = grid([](int x) { return crest_with_side_lobes(x, 10, -1.f) + crest_with_side_lobes(x, 28, 1.f); });
+  const DetectionResult r = detect_ridge_valley_points(g.points, g.curvature, g.neighbourhoods, kH);
+  EXPECT_EQ(count_at(r, g, PointLabel::Valley, 10), 20u);
+  EXPECT_EQ(count_at(r, g, PointLabel::Ridge, 28), 20u);
+  EXPECT_EQ(r.valley_points, 20u);
+  EXPECT_EQ(r.ridge_points, 20u);
+}
+
 TEST(DetectRidgeValleyPoints, UniformCurvatureGivesNothingUnderTheSalientRule) {
   // A cylinder-like uniform curvature 0.5/h: every point is at the extreme; the plain rule takes them all.
   const Grid g = grid([](int) { return 0.5f; });

@@ -55,8 +55,10 @@ struct DetectionOptions {
   /// around it. 2 rather than more: on a scanned organic model (bunny.off) 4 left only 10 lines, 2 gives 24.
   float median_factor = 2.f;
   /// Salient rule: keep only points whose |k_i| is not exceeded by any neighbour lying within `suppression_cone_deg`
-  /// of the principal direction of k_i (non-maximum suppression across the ridge): thins the band of high curvature
-  /// around an edge to its crest and removes the plateaux of uniformly curved surfaces.
+  /// of the principal direction of k_i (non-maximum suppression across the ridge), neither by one of the same sign nor
+  /// by one of the opposite sign that passes its own side's thresholds: thins the band of high curvature around an
+  /// edge to its crest, removes the plateaux of uniformly curved surfaces, and removes the weaker lobe of the other
+  /// sign that the quadric fit puts beside a sharp edge (a valley line 1–2h off a convex edge).
   bool non_maximum_suppression = true;
   /// Half-angle (degrees) of the double cone around the principal direction in which neighbours compete in the
   /// non-maximum suppression. 30°: only neighbours clearly across the ridge compete; neighbours along the ridge or
