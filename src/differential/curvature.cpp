@@ -149,8 +149,10 @@ double noise_estimate(const std::vector<double>& residual, std::vector<double>& 
   const double outer_median = median(outer);
   if (inner_residual.empty() || !(outer_median > 0)) return outer_median;
   const double inner_median = median(inner_residual);
-  // Median of χ²_ν/ν for ν = 6 (the inner fit's dof) over ν = 11 (dof at k = 16), the ratio on pure noise.
-  const double pure_noise_ratio = k == 16 ? 0.891 / 0.940 : 1.0;
+  // On pure noise the ratio is that of the medians of χ²_ν/ν, ≈ (1 − 2/(9ν))³ (Wilson–Hilferty), ν = points − 6.
+  const auto chi_square_median = [](double dof) { return std::pow(1 - 2 / (9 * dof), 3); };
+  const double pure_noise_ratio = chi_square_median(static_cast<double>(kInnerFit) - 5) /
+                                  chi_square_median(static_cast<double>(k) - 5);
   const double q = (inner_median * inner_median) / (outer_median * outer_median) / pure_noise_ratio;
   const double c = std::pow(static_cast<double>(kInnerFit) / static_cast<double>(k), 3);
   const double noise_share = std::clamp((q - c) / (1 - c), 0.0, 1.0);
