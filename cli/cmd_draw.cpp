@@ -224,7 +224,7 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--beta", o.features.joining.join_angle_beta_deg,
                   "Paper's beta: largest angle between end tangents when joining lines, degrees")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 180.0))
+      ->check(CLI::Range(0.0, 90.0))
       ->group(feat);
   cmd->add_option("--min-length", o.features.joining.min_length_factor,
                   "Drop ridge/valley lines shorter than this, in units of h")
