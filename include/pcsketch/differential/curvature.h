@@ -13,8 +13,9 @@ struct CurvatureOptions {
   /// Neighbours used in the fit. 0 = automatic: the shared neighbourhood (its k), enlarged on noisy clouds when
   /// adapt_to_noise is set. A value above the shared k is served by kd-tree queries.
   std::size_t k = 0;
-  /// With k = 0: estimate the noise σ from the residuals of a first fit and refit over n ≥ 8·σ·√(πρ)/noise_tolerance
-  /// neighbours (ρ the point density), the size at which the fit's curvature noise falls below
+  /// With k = 0: estimate the noise σ from the residuals of first fits over the shared k and the nearest 11
+  /// neighbours (separating noise from the shape's misfit) and refit over n ≥ 8·σ·√(πρ)/noise_tolerance neighbours
+  /// (ρ the point density) when n > 1.25·k, the size at which the fit's curvature noise falls below
   /// noise_tolerance / r (r the fit radius). Clean clouds keep the shared k; see docs/geometry.md.
   bool adapt_to_noise = true;
   /// Target curvature noise relative to the curvature 1/r of the support radius r (dimensionless). The default
@@ -33,7 +34,7 @@ struct Curvature {
   std::vector<Vec3f> dir1;  ///< #P, unit principal direction of k1, tangent to the surface
   std::vector<Vec3f> dir2;  ///< #P, unit principal direction of k2 (= normal × dir1)
   std::size_t fit_neighbours = 0;  ///< neighbours used per fit (after noise adaptation)
-  float noise_sigma = 0;           ///< median residual of the first fit along the normal, model units
+  float noise_sigma = 0;           ///< noise σ̂, model units: noise share of the median first-fit residual
   Warnings warnings;
 
   float mean(std::size_t i) const { return 0.5f * (k1[i] + k2[i]); }
