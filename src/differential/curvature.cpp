@@ -144,16 +144,22 @@ constexpr std::size_t kInnerFit = 11;
 /// residuals over the shared k and over the nearest kInnerFit neighbours, normalised by their ratio on pure noise
 /// (medians of χ²_ν/ν), give the noise share f of the outer one: q = c + (1 − c)·f with c = (kInnerFit/k)³.
 /// σ̂ = √f · median residual: on pure noise as before, on clean coarse meshes near 0 (see docs/geometry.md).
-double noise_estimate(const std::vector<double>& residual, std::vector<double>& inner_residual, std::size_t k) {
+/// `inner_residual` holds the smaller fit's residual at every `stride`-th point.
+double noise_estimate(const std::vector<double>& residual, std::vector<double>& inner_residual, std::size_t stride,
+                      std::size_t k) {
   std::vector<double> outer = residual;
   const double outer_median = median(outer);
   if (inner_residual.empty() || !(outer_median > 0)) return outer_median;
+  std::vector<double> sampled_outer(inner_residual.size());
+  for (std::size_t j = 0; j < inner_residual.size(); ++j) sampled_outer[j] = residual[j * stride];
+  const double sampled_outer_median = median(sampled_outer);
+  if (!(sampled_outer_median > 0)) return outer_median;
   const double inner_median = median(inner_residual);
   // On pure noise the ratio is that of the medians of χ²_ν/ν, ≈ (1 − 2/(9ν))³ (Wilson–Hilferty), ν = points − 6.
   const auto chi_square_median = [](double dof) { return std::pow(1 - 2 / (9 * dof), 3); };
   const double pure_noise_ratio = chi_square_median(static_cast<double>(kInnerFit) - 5) /
                                   chi_square_median(static_cast<double>(k) - 5);
-  const double q = (inner_median * inner_median) / (outer_median * outer_median) / pure_noise_ratio;
+  const double q = (inner_median * inner_median) / (sampled_outer_median * sampled_outer_median) / pure_noise_ratio;
   const double c = std::pow(static_cast<double>(kInnerFit) / static_cast<double>(k), 3);
   const double noise_share = std::clamp((q - c) / (1 - c), 0.0, 1.0);
   return std::sqrt(noise_share) * outer_median;
@@ -172,7 +178,10 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   result.dir1.resize(n);
   result.dir2.resize(n);
   std::vector<double> residual(n);
-  std::vector<double> inner_residual;  // first pass only: residual of the fit over the nearest kInnerFit neighbours
+  // First pass only: residual of the fit over the nearest kInnerFit neighbours at every stride-th point (points are
+  // in space-filling-curve order, so the sample spreads over the surface); its median needs no more than ~16k.
+  std::vector<double> inner_residual;
+  const std::size_t stride = std::max<std::size_t>(1, n / 16384);
 
   std::optional<neighbourhood::KdTree> own_tree;
   const auto run = [&](std::size_t k, bool from_tree) {
@@ -191,7 +200,8 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
           count = found.size();
         }
         const PointFit fit = fit_point(points, i, normals[i], nb, count);
-        if (!inner_residual.empty()) inner_residual[i] = fit_point(points, i, normals[i], nb, kInnerFit).residual;
+        if (!inner_residual.empty() && i % stride == 0)
+          inner_residual[i / stride] = fit_point(points, i, normals[i], nb, kInnerFit).residual;
         result.k1[i] = fit.k1;
         result.k2[i] = fit.k2;
         result.dir1[i] = fit.dir1;
@@ -207,9 +217,9 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
     const std::size_t k = std::min(options.k, available);
     run(k, k > shared);
   } else {
-    if (shared >= kInnerFit + 4) inner_residual.resize(n);
+    if (shared >= kInnerFit + 4) inner_residual.resize((n + stride - 1) / stride);
     run(shared, false);
-    result.noise_sigma = static_cast<float>(noise_estimate(residual, inner_residual, shared));
+    result.noise_sigma = static_cast<float>(noise_estimate(residual, inner_residual, stride, shared));
     if (options.adapt_to_noise && options.noise_tolerance > 0 && shared > 0) {
       const double wanted =
           8.0 * result.noise_sigma * std::sqrt(kPi * density(neighbourhoods)) / options.noise_tolerance;
