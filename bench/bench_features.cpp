@@ -54,20 +54,9 @@ int run(int argc, char** argv) {
     names.push_back(grouped(n) + " bunny samples");
     results.push_back(measure(sampled_cloud(shared_data("bunny.off"), n, 2024)));
   }
-  std::vector<std::string> header{"stage"};
-  for (const std::string& name : names) {
-    header.push_back(name + " s");
-    header.push_back("µs/point");
-  }
-  Table table(header);
+  Table table = per_point_table("stage", names);
   const auto row = [&](const std::string& stage, auto seconds_of) {
-    std::vector<std::string> cells{stage};
-    for (const Measured& m : results) {
-      const double s = seconds_of(m);
-      cells.push_back(fixed(s, 4));
-      cells.push_back(fixed(1e6 * s / static_cast<double>(m.points), 3));
-    }
-    table.add_row(cells);
+    add_per_point_row(table, stage, results, seconds_of, 4);
   };
   row("ridge-valley points extraction (detection)", [](const Measured& m) { return m.best.detection; });
   row("tracing", [](const Measured& m) { return m.best.tracing; });

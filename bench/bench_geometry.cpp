@@ -94,20 +94,9 @@ int run(int argc, char** argv) {
     results.push_back(parse(run_isolated([n] { return serialise(measure_sampled(n)); })));
   }
 
-  std::vector<std::string> header{"stage"};
-  for (const std::string& name : names) {
-    header.push_back(name + " s");
-    header.push_back("µs/point");
-  }
-  Table table(header);
+  Table table = per_point_table("stage", names);
   const auto row = [&](const std::string& stage, auto seconds_of) {
-    std::vector<std::string> cells{stage};
-    for (const Measured& m : results) {
-      const double s = seconds_of(m);
-      cells.push_back(fixed(s, 3));
-      cells.push_back(fixed(1e6 * s / static_cast<double>(m.points), 3));
-    }
-    table.add_row(cells);
+    add_per_point_row(table, stage, results, seconds_of);
   };
   const auto geometry = [](const Measured& m) {
     return m.t.kd_tree + m.t.neighbourhoods + m.t.normals + m.t.orientation + m.t.curvature;

@@ -107,20 +107,9 @@ int run(int argc, char** argv) {
         parse(run_isolated([n] { return serialise(measure(sampled_cloud(shared_data("bunny.off"), n, 2024))); })));
   }
 
-  std::vector<std::string> header{"step"};
-  for (const std::string& name : names) {
-    header.push_back(name + " s");
-    header.push_back("µs/point");
-  }
-  Table table(header);
+  Table table = per_point_table("step", names);
   const auto row = [&](const std::string& step, auto seconds_of) {
-    std::vector<std::string> cells{step};
-    for (const Measured& m : results) {
-      const double s = seconds_of(m);
-      cells.push_back(fixed(s, 3));
-      cells.push_back(fixed(1e6 * s / static_cast<double>(m.points), 3));
-    }
-    table.add_row(cells);
+    add_per_point_row(table, step, results, seconds_of);
   };
   const auto count_row = [&](const std::string& what, auto count_of) {
     std::vector<std::string> cells{what};

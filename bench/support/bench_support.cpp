@@ -134,4 +134,13 @@ PointCloud sampled_cloud(const std::string& path, std::size_t n, std::uint64_t s
   return cloud;
 }
 
+Table per_point_table(const std::string& first, const std::vector<std::string>& names) {
+  std::vector<std::string> header{first};
+  for (const std::string& name : names) {
+    header.push_back(name + " s");
+    header.push_back("µs/point");
+  }
+  return Table(std::move(header));
+}
+
 }  // namespace pcsketch::bench

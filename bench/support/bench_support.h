@@ -59,8 +59,26 @@ class Table {
   std::vector<std::vector<std::string>> rows_;
 };
 
+/// A table whose first column is `first` and which has, for each configuration in `names`, a "NAME s" and a
+/// "µs/point" column.
+Table per_point_table(const std::string& first, const std::vector<std::string>& names);
+
 /// `value` with `digits` digits after the point.
 std::string fixed(double value, int digits);
+
+/// Adds to a per_point_table the row `label`: for each result, `seconds_of(result)` with `digits` digits and the
+/// time per point (`Result::points`) in µs.
+template <class Result, class SecondsOf>
+void add_per_point_row(Table& table, const std::string& label, const std::vector<Result>& results,
+                       SecondsOf seconds_of, int digits = 3) {
+  std::vector<std::string> cells{label};
+  for (const Result& r : results) {
+    const double s = seconds_of(r);
+    cells.push_back(fixed(s, digits));
+    cells.push_back(fixed(1e6 * s / static_cast<double>(r.points), 3));
+  }
+  table.add_row(std::move(cells));
+}
 /// A count with thousands separators: 1,000,000.
 std::string grouped(std::size_t count);
 /// Bytes as MiB with one decimal.
