@@ -1,8 +1,6 @@
 // Runs the built pcsketch binary: `draw` end to end on the bundled bunny, bad input, tiny clouds, stage images.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -11,47 +9,16 @@
 #include <sstream>
 #include <string>
 
+#include "cli_test_support.h"
+
 namespace pcsketch {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class CliDraw : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pcsketch_cli_draw_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-            std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  CommandRun run(const std::string& args) const {
-    const std::string command =
-        std::string(PCSKETCH_CLI) + " " + args + " >" + (dir_ / "out").string() + " 2>" + (dir_ / "err").string();
-    const int raw = std::system(command.c_str());
-    CommandRun r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(dir_ / "out");
-    r.err = slurp(dir_ / "err");
-    return r;
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
-  fs::path dir_;
-};
+using test::CommandRun;
+using test::slurp;
+using CliDraw = test::CliTest;
 
 TEST_F(CliDraw, BundledBunnyToAllFourOutputs) {
   const CommandRun r = run("draw " PCSKETCH_DATA "/bunny.ply --size 384x384 -o " + path("b.svg") + " -o " +

@@ -1,8 +1,6 @@
 // Runs the built pcsketch binary: `info` and `sample` on good and bad input, checking exit status and output.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -12,45 +10,14 @@
 #include <string>
 
 #include "pcsketch/io/read_cloud.h"
+#include "cli_test_support.h"
 
 namespace pcsketch {
 namespace {
 
-struct CommandRun {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// One temp dir per test for the captured output and any files the command writes.
-class CliIo : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("pcsketch_cli_io_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
-            std::to_string(::getpid()));
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  CommandRun run(const std::string& args) const {
-    const std::string command =
-        std::string(PCSKETCH_CLI) + " " + args + " >" + (dir_ / "out").string() + " 2>" + (dir_ / "err").string();
-    const int raw = std::system(command.c_str());
-    CommandRun r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(dir_ / "out");
-    r.err = slurp(dir_ / "err");
-    return r;
-  }
-  std::filesystem::path dir_;
-};
+using test::CommandRun;
+using test::slurp;
+using CliIo = test::CliTest;
 
 TEST_F(CliIo, InfoOnTheBundledBunny) {
   const CommandRun r = run("info " PCSKETCH_DATA "/bunny.ply");
