@@ -81,4 +81,6 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace pcsketch::bench
 
-int main(int argc, char** argv) { return pcsketch::bench::run(argc, argv); }
+int main(int argc, char** argv) {
+  return pcsketch::bench::bench_main("bench_features", argc, argv, pcsketch::bench::run);
+}

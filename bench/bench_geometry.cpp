@@ -129,10 +129,5 @@ int run(int argc, char** argv) {
 }  // namespace pcsketch::bench
 
 int main(int argc, char** argv) {
-  try {
-    return pcsketch::bench::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::cerr << "bench_geometry: " << e.what() << "\n";
-    return 1;
-  }
+  return pcsketch::bench::bench_main("bench_geometry", argc, argv, pcsketch::bench::run);
 }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iostream>
 #include <numeric>
 #include <random>
 #include <sstream>
@@ -141,6 +142,15 @@ Table per_point_table(const std::string& first, const std::vector<std::string>& 
     header.push_back("µs/point");
   }
   return Table(std::move(header));
+}
+
+int bench_main(const char* name, int argc, char** argv, int (*run)(int, char**)) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << name << ": " << e.what() << "\n";
+    return 1;
+  }
 }
 
 }  // namespace pcsketch::bench

@@ -46,6 +46,9 @@ std::string load_average();
 /// @throws std::runtime_error if the child fails or dies.
 std::string run_isolated(const std::function<std::string()>& job);
 
+/// A bench program's main: runs `run(argc, argv)` and turns an exception into one line on stderr and status 1.
+int bench_main(const char* name, int argc, char** argv, int (*run)(int, char**));
+
 /// A plain-text table with right-aligned columns (the first column left-aligned).
 class Table {
  public:
