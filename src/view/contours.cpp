@@ -113,6 +113,21 @@ struct Walker {
       heading_now = heading(chain);
     }
   }
+
+  /// Grows from `seed` forward (the chain may close on the seed), then, if it did not close, backward from the seed.
+  /// Returns the points in order along the line and whether it closed.
+  template <class ChooseForward, class ChooseBackward>
+  std::pair<std::vector<std::uint32_t>, bool> grow_both_ways(std::uint32_t seed, Vec forward_heading,
+                                                             ChooseForward&& forward_choose, Vec backward_heading,
+                                                             ChooseBackward&& backward_choose) {
+    std::vector<std::uint32_t> forward{seed};
+    if (grow(forward, forward_heading, true, forward_choose)) return {std::move(forward), true};
+    std::vector<std::uint32_t> chain{seed};
+    grow(chain, backward_heading, false, backward_choose);
+    std::reverse(chain.begin(), chain.end());
+    chain.insert(chain.end(), forward.begin() + 1, forward.end());
+    return {std::move(chain), false};
+  }
 };
 
 /// Chains the outline's boundary points in the image plane (forward with the empty side on the right, then
@@ -189,17 +204,8 @@ std::vector<Polyline> trace_outline(const ContourPoints& cp, const std::vector<V
   for (const std::uint32_t seed : seeds) {
     if (walker.used[seed]) continue;
     walker.used[seed] = 1;
-    std::vector<std::uint32_t> forward{seed};
-    const bool closed = walker.grow(forward, heading_for(cp.outward[seed], +1.f), true, chooser(+1.f));
-    std::vector<std::uint32_t> chain;
-    if (!closed) {
-      std::vector<std::uint32_t> backward{seed};
-      walker.grow(backward, heading_for(cp.outward[seed], -1.f), false, chooser(-1.f));
-      chain.assign(backward.rbegin(), backward.rend());
-      chain.insert(chain.end(), forward.begin() + 1, forward.end());
-    } else {
-      chain = std::move(forward);
-    }
+    const auto [chain, closed] = walker.grow_both_ways(seed, heading_for(cp.outward[seed], +1.f), chooser(+1.f),
+                                                       heading_for(cp.outward[seed], -1.f), chooser(-1.f));
     Polyline line;
     line.kind = LineKind::Contour;
     line.closed = closed;
@@ -291,17 +297,7 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
     });
     if (front < 0) continue;
     const Vec3f d0 = (rim[static_cast<std::size_t>(front)] - rim[seed]).normalized();
-    std::vector<std::uint32_t> forward{seed};
-    const bool closed = walker.grow(forward, d0, true, choose);
-    std::vector<std::uint32_t> chain;
-    if (!closed) {
-      std::vector<std::uint32_t> backward{seed};
-      walker.grow(backward, Vec3f(-d0), false, choose);
-      chain.assign(backward.rbegin(), backward.rend());
-      chain.insert(chain.end(), forward.begin() + 1, forward.end());
-    } else {
-      chain = std::move(forward);
-    }
+    const auto [chain, closed] = walker.grow_both_ways(seed, d0, choose, Vec3f(-d0), choose);
     Polyline line;
     line.kind = LineKind::Contour;
     line.closed = closed;
