@@ -69,15 +69,10 @@ void write_all(const Drawing& drawing, const std::vector<std::string>& paths, co
 }
 
 void print_timings(const Timings& t, std::size_t points) {
-  const std::vector<std::string_view> paper = {"ridge-valley points extraction",
-                                               "ridge-valley points connection",
-                                               "contour points extraction",
-                                               "contour line connection",
-                                               "drawing",
-                                               "total"};
+  const auto paper = t.table_rows();
   std::printf("%-34s %10s  %s\n", "stage", "seconds", "(paper Table 2 row)");
   for (const auto& [name, seconds] : t.all_rows()) {
-    const bool in_paper = std::find(paper.begin(), paper.end(), name) != paper.end();
+    const bool in_paper = std::any_of(paper.begin(), paper.end(), [&](const auto& row) { return row.first == name; });
     std::printf("%-34.*s %10.4f  %s\n", static_cast<int>(name.size()), name.data(), seconds, in_paper ? "*" : "");
   }
   std::printf("%-34s %10zu\n", "points", points);

@@ -1,5 +1,6 @@
 #include "pcsketch/pipeline.h"
 
+#include <array>
 #include <chrono>
 #include <nlohmann/json.hpp>
 
@@ -138,9 +139,32 @@ view::ViewResult compute_view(const Prepared& prepared, const view::Camera& came
 
 }  // namespace
 
+namespace {
+
+/// Every stage of Timings in pipeline order with its row name (the paper's Table 2 name where it has one): the one
+/// list that total(), all_rows() and += walk.
+constexpr std::array<std::pair<std::string_view, double Timings::*>, 13> kTimingRows{{
+    {"read", &Timings::read},
+    {"reorder", &Timings::reorder},
+    {"neighbourhoods", &Timings::neighbourhoods},
+    {"normals", &Timings::normals},
+    {"curvature", &Timings::curvature},
+    {"ridge-valley points extraction", &Timings::ridge_valley_points},
+    {"ridge-valley points connection", &Timings::ridge_valley_connection},
+    {"scene", &Timings::scene},
+    {"contour points extraction", &Timings::contour_points},
+    {"contour line connection", &Timings::contour_connection},
+    {"visibility", &Timings::visibility},
+    {"shadows", &Timings::shadows},
+    {"drawing", &Timings::drawing},
+}};
+
+}  // namespace
+
 double Timings::total() const {
-  return read + reorder + neighbourhoods + normals + curvature + ridge_valley_points + ridge_valley_connection +
-         scene + contour_points + contour_connection + visibility + shadows + drawing;
+  double sum = 0;
+  for (const auto& [name, field] : kTimingRows) sum += this->*field;
+  return sum;
 }
 
 std::vector<std::pair<std::string_view, double>> Timings::table_rows() const {
@@ -153,36 +177,14 @@ std::vector<std::pair<std::string_view, double>> Timings::table_rows() const {
 }
 
 std::vector<std::pair<std::string_view, double>> Timings::all_rows() const {
-  return {{"read", read},
-          {"reorder", reorder},
-          {"neighbourhoods", neighbourhoods},
-          {"normals", normals},
-          {"curvature", curvature},
-          {"ridge-valley points extraction", ridge_valley_points},
-          {"ridge-valley points connection", ridge_valley_connection},
-          {"scene", scene},
-          {"contour points extraction", contour_points},
-          {"contour line connection", contour_connection},
-          {"visibility", visibility},
-          {"shadows", shadows},
-          {"drawing", drawing},
-          {"total", total()}};
+  std::vector<std::pair<std::string_view, double>> rows;
+  for (const auto& [name, field] : kTimingRows) rows.emplace_back(name, this->*field);
+  rows.emplace_back("total", total());
+  return rows;
 }
 
 Timings& Timings::operator+=(const Timings& o) {
-  read += o.read;
-  reorder += o.reorder;
-  neighbourhoods += o.neighbourhoods;
-  normals += o.normals;
-  curvature += o.curvature;
-  ridge_valley_points += o.ridge_valley_points;
-  ridge_valley_connection += o.ridge_valley_connection;
-  scene += o.scene;
-  contour_points += o.contour_points;
-  contour_connection += o.contour_connection;
-  visibility += o.visibility;
-  shadows += o.shadows;
-  drawing += o.drawing;
+  for (const auto& [name, field] : kTimingRows) this->*field += o.*field;
   return *this;
 }
 
