@@ -60,11 +60,24 @@ class SignedUnionFind {
   std::vector<std::uint32_t> size_;
 };
 
-/// Weight level of an edge: 0 for parallel normals, growing with the angle (sqrt(1−|cos|) ≈ angle/√2 spreads the
-/// many nearly parallel pairs over many levels).
-std::uint16_t level(const Vec3f& a, const Vec3f& b) {
-  const float c = std::min(1.f, std::abs(a.dot(b)));
-  return static_cast<std::uint16_t>(std::min<float>(kLevels - 1, std::sqrt(1.f - c) * float(kLevels)));
+/// How far the normal of q is, as seen from p, from agreeing with the normal of p, as a cosine in [−1, 1]: its sign
+/// says whether the two agree, its magnitude how sure that is.
+/// Reflect: n_q mirrored in the plane bisecting p and q, against n_p. A smooth arc through p and q, a circle's or
+/// a sharp edge's, maps one normal onto the other under that mirror (König and Gumhold 2009), so the pair two faces
+/// of a 90° edge give is as sure as a pair on one face, where n_p·n_q is 0 and says nothing. Coincident points fall
+/// back to n_p·n_q.
+float agreement(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq, OrientCriterion criterion) {
+  const Vec3f e = q - p;
+  const float length2 = e.squaredNorm();
+  if (criterion == OrientCriterion::Parallel || !(length2 > 0.f)) return np.dot(nq);
+  return np.dot(nq - (2.f * nq.dot(e) / length2) * e);
+}
+
+/// Weight level of an edge of agreement c: 0 for a sure one, growing as |c| falls (sqrt(1−|c|) ≈ angle/√2 spreads
+/// the many nearly sure pairs over many levels).
+std::uint16_t level(float c) {
+  const float sure = std::min(1.f, std::abs(c));
+  return static_cast<std::uint16_t>(std::min<float>(kLevels - 1, std::sqrt(1.f - sure) * float(kLevels)));
 }
 
 /// A graph edge with its weight level.
@@ -96,6 +109,9 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
   if (n == 0) return result;
   const std::size_t stride = neighbourhoods.k;
   const std::size_t k = detail::neighbours_used(options.k, neighbourhoods);
+  const auto agree = [&](std::size_t i, std::size_t j) {
+    return agreement(points[i], normals[i], points[j], normals[j], options.criterion);
+  };
 
   // Every undirected edge is listed once: by its smaller endpoint, or by the endpoint whose list holds it when the
   // other's does not (distance at or beyond that one's k-th neighbour; ties list it twice, which is harmless).
@@ -103,9 +119,9 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
     const std::uint32_t j = neighbourhoods.indices[i * stride + m];
     const bool listed_by_j = neighbourhoods.distances[i * stride + m] < neighbourhoods.distances[j * stride + k - 1];
     const bool usable = normals[i].squaredNorm() > 0 && normals[j].squaredNorm() > 0;
-    return usable && (i < j || !listed_by_j) ? level(normals[i], normals[j]) : kNoEdge;
+    return usable && (i < j || !listed_by_j) ? level(agree(i, j)) : kNoEdge;
   };
-  const auto disagree = [&](std::uint32_t i, std::uint32_t j) -> std::uint8_t { return normals[i].dot(normals[j]) < 0; };
+  const auto disagree = [&](std::uint32_t i, std::uint32_t j) -> std::uint8_t { return agree(i, j) < 0; };
 
   // 1. Kruskal inside fixed blocks of consecutive (spatially sorted) points, in parallel and in cache: each point
   //    gets its block tree's root and its sign relative to that root; edges leaving the block are kept for step 2.

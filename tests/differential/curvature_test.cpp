@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "pcsketch/differential/surface.h"
+#include "pcsketch/io/read_cloud.h"
 #include "support/analytic_shapes.h"
 
 namespace pcsketch::differential {
@@ -124,6 +126,37 @@ TEST(Curvature, TorusOutwardByFarthestPointRuleToo) {
   options.orientation.outward = OutwardRule::FarthestPoint;
   const Analysed a = analyse(test::torus(1.f, 0.3f, {.n = 5000, .seed = 17}), options);
   for (std::size_t i = 0; i < a.cloud.size(); ++i) ASSERT_GT(a.cloud.normals[i].dot(a.truth[i]), 0.f) << i;
+}
+
+TEST(Curvature, TorusOutwardByParallelCriterionToo) {
+  SurfaceOptions options;
+  options.orientation.criterion = OrientCriterion::Parallel;
+  const Analysed a = analyse(test::torus(1.f, 0.3f, {.n = 5000, .seed = 19}), options);
+  for (std::size_t i = 0; i < a.cloud.size(); ++i) ASSERT_GT(a.cloud.normals[i].dot(a.truth[i]), 0.f) << i;
+}
+
+// Sharp edges: the PCA normals of points on an edge lie between the two faces' normals, and across the edge the two
+// faces' normals are perpendicular, which the reflection criterion crosses as surely as a flat face.
+TEST(Curvature, CubeNormalsAllOutwardAcrossSharpEdges) {
+  const Analysed a = analyse(test::cube(1.f, {.n = 30000, .seed = 23}));
+  for (std::size_t i = 0; i < a.cloud.size(); ++i) ASSERT_GT(a.cloud.normals[i].dot(a.truth[i]), 0.f) << i;
+}
+
+// The fandisk's own vertices: dense strips along its sharp edges, large triangles between them. Ground truth: the
+// mesh's area-weighted vertex normals. Hoppe's |n_i·n_j| criterion leaves about a third of them inward here.
+TEST(Curvature, FandiskVertexNormalsAgreeWithTheMesh) {
+  const std::string path = std::string(PCSKETCH_FIXTURES) + "/fandisk.off";
+  const Mesh mesh = io::read_mesh(path);
+  std::vector<Vec3f> vertex_normals(mesh.vertices.size(), Vec3f::Zero());
+  for (const auto& f : mesh.faces) {
+    const Vec3f n = (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+    for (std::uint32_t v : f) vertex_normals[v] += n;
+  }
+  PointCloud cloud = io::read_point_cloud(path).cloud;
+  ASSERT_EQ(cloud.size(), mesh.vertices.size());
+  analyse_surface(cloud);
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    ASSERT_GT(cloud.normals[i].dot(vertex_normals[cloud.source_index[i]]), 0.f) << "vertex " << cloud.source_index[i];
 }
 
 TEST(Curvature, ExplicitFitSizeIsUsed) {
