@@ -1,8 +1,9 @@
 // The paper's Table 2 ("Model – time contrast") for our whole pipeline: ridge-valley points extraction, connection,
 // contour points extraction, contour line connection, drawing, total, for the vertices of bunny, camel, fandisk and
 // elephant (/work/shared/data/*.off) and for clouds sampled from bunny.off; next to the paper's published seconds and
-// the per-point ratio, with the contour precision/recall of each drawing against its mesh's ground truth (the
-// visible occluding contours, tests/support/mesh_ground_truth.h) so that speed and quality are read together.
+// the per-point ratio, with the contour, ridge and valley precision/recall of each drawing against its mesh's ground
+// truth (the visible occluding contours, and the visible convex and concave sharp edges at 40°,
+// tests/support/mesh_ground_truth.h) so that speed and quality are read together.
 //
 //   bench_pipeline [N ...]   sample sizes (default 1000000 5000000); "0" skips the sampled clouds
 //
@@ -40,7 +41,22 @@ struct Job {
   std::string paper;  ///< model name in kPaper, or empty
 };
 
-/// Runs the whole pipeline on one cloud and scores its contours; returns JSON (crosses the process boundary).
+/// Mesh edges whose faces meet at more than this angle (degrees) are the ground truth of ridge and valley lines, as
+/// in the features tests (fandisk).
+constexpr float kSharpDegrees = 40.f;
+
+/// Image samples (every 0.5 px) of the visible strokes of one kind.
+std::vector<Vec2f> visible_samples(const Drawing& drawing, LineKind kind) {
+  std::vector<Vec2f> out;
+  for (const Stroke& s : drawing.strokes) {
+    if (s.kind != kind || !s.visible) continue;
+    const std::vector<Vec2f> samples = test::sample_polyline(s.image_points, s.closed, 0.5f);
+    out.insert(out.end(), samples.begin(), samples.end());
+  }
+  return out;
+}
+
+/// Runs the whole pipeline on one cloud and scores its lines; returns JSON (crosses the process boundary).
 std::string measure(const Job& job) {
   Stopwatch clock;
   PointCloud cloud = job.samples == 0 ? io::read_point_cloud(shared_data(job.mesh)).cloud
@@ -59,26 +75,26 @@ std::string measure(const Job& job) {
   timings += result.timings;
   const std::size_t peak = peak_rss_bytes();
 
-  // Quality: visible contour strokes against the mesh's visible occluding contours, same camera, 3 px at 1024 px.
+  // Quality, same camera, 3 px at 1024 px: visible contour strokes against the mesh's visible occluding contours,
+  // visible ridge strokes against its visible convex sharp edges and valley strokes against its concave ones.
   const Mesh mesh = io::read_mesh(shared_data(job.mesh));
   const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, options.camera);
-  const test::MeshContours truth = test::mesh_contours(mesh, camera);
-  std::vector<Vec2f> drawn;
+  const test::MeshSharpEdges sharp = test::mesh_sharp_edges(mesh, camera, kSharpDegrees);
+  const auto score = [&](LineKind kind, const std::vector<Vec2f>& truth) {
+    if (truth.empty()) return nlohmann::json();  // nothing to find: no score
+    const test::LineMatch match = test::match_lines(visible_samples(result.drawing, kind), truth, 3.f);
+    return nlohmann::json{match.precision, match.recall};
+  };
   std::size_t strokes = 0;
-  for (const Stroke& s : result.drawing.strokes) {
-    strokes += s.visible;
-    if (s.kind != LineKind::Contour || !s.visible) continue;
-    const std::vector<Vec2f> samples = test::sample_polyline(s.image_points, s.closed, 0.5f);
-    drawn.insert(drawn.end(), samples.begin(), samples.end());
-  }
-  const test::LineMatch match = test::match_lines(drawn, truth.visible, 3.f);
+  for (const Stroke& s : result.drawing.strokes) strokes += s.visible;
 
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& [name, seconds] : timings.all_rows()) rows.push_back({name, seconds});
   return nlohmann::json{{"points", prepared.cloud.size()},
                         {"rows", rows},
-                        {"precision", match.precision},
-                        {"recall", match.recall},
+                        {"contour", score(LineKind::Contour, test::mesh_contours(mesh, camera).visible)},
+                        {"ridge", score(LineKind::Ridge, sharp.convex.visible)},
+                        {"valley", score(LineKind::Valley, sharp.concave.visible)},
                         {"strokes", strokes},
                         {"peak", peak}}
       .dump();
@@ -154,8 +170,21 @@ int run(int argc, char** argv) {
         const double ours = seconds_of(r, "total") / r["points"].get<double>();
         return fixed(p.rows[5] / static_cast<double>(p.points) / ours, 0) + "x";
       });
-  add("contour precision (3 px)", [](const nlohmann::json& r) { return fixed(r["precision"].get<double>(), 3); }, none);
-  add("contour recall (3 px)", [](const nlohmann::json& r) { return fixed(r["recall"].get<double>(), 3); }, none);
+  // A score is a dash where the mesh shows no line of that kind (a smooth mesh has no sharp edge): nothing to find.
+  const auto score_cell = [](const std::string& key, std::size_t index) {
+    return [key, index](const nlohmann::json& r) {
+      return r[key].is_null() ? std::string("—") : fixed(r[key][index].get<double>(), 3);
+    };
+  };
+  const auto both_cell = [&](const std::string& key) {
+    return [key, precision = score_cell(key, 0), recall = score_cell(key, 1)](const nlohmann::json& r) {
+      return r[key].is_null() ? std::string("—") : precision(r) + " / " + recall(r);
+    };
+  };
+  add("contour precision (3 px)", score_cell("contour", 0), none);
+  add("contour recall (3 px)", score_cell("contour", 1), none);
+  add("ridge precision / recall (3 px)", both_cell("ridge"), none);
+  add("valley precision / recall (3 px)", both_cell("valley"), none);
   add("visible strokes", [](const nlohmann::json& r) { return grouped(r["strokes"].get<std::size_t>()); }, none);
   add("peak RSS", [](const nlohmann::json& r) { return mebibytes(r["peak"].get<std::size_t>()); }, none);
   std::cout << table.to_string() << "* = a row of the paper's Table 2. load average after: " << load_average() << "\n";

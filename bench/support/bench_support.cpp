@@ -80,9 +80,14 @@ std::string run_isolated(const std::function<std::string()>& job) {
 }
 
 std::string Table::to_string() const {
+  // Columns are counted in UTF-8 code points ("µs", "—"), not bytes: continuation bytes 10xxxxxx take no column.
+  const auto columns = [](const std::string& text) {
+    return static_cast<std::size_t>(
+        std::count_if(text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+  };
   std::vector<std::size_t> width(header_.size(), 0);
   const auto measure = [&](const std::vector<std::string>& row) {
-    for (std::size_t c = 0; c < row.size() && c < width.size(); ++c) width[c] = std::max(width[c], row[c].size());
+    for (std::size_t c = 0; c < row.size() && c < width.size(); ++c) width[c] = std::max(width[c], columns(row[c]));
   };
   measure(header_);
   for (const auto& row : rows_) measure(row);
@@ -90,7 +95,7 @@ std::string Table::to_string() const {
   const auto line = [&](const std::vector<std::string>& row) {
     for (std::size_t c = 0; c < width.size(); ++c) {
       const std::string cell = c < row.size() ? row[c] : "";
-      const std::string pad(width[c] - cell.size(), ' ');
+      const std::string pad(width[c] - columns(cell), ' ');
       out << (c ? "  " : "") << (c == 0 ? cell + pad : pad + cell);
     }
     out << '\n';

@@ -6,22 +6,21 @@
 #include <oneapi/tbb/global_control.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <set>
 #include <string>
 
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/io/sample_mesh.h"
 #include "support/analytic_shapes.h"
+#include "support/mesh_ground_truth.h"
 
 namespace pcsketch::features {
 namespace {
 
-struct Segment {
-  Vec3f a, b;
-};
+using Segment = std::array<Vec3f, 2>;  // as test::SharpEdges holds them
 
 float segment_distance(const Vec3f& p, const Vec3f& a, const Vec3f& b) {
   const Vec3f ab = b - a;
@@ -58,12 +57,12 @@ struct Coverage {
 Coverage coverage(const std::vector<Segment>& edges, const std::vector<const Polyline*>& lines, float h, float tol) {
   Coverage c;
   for (const Segment& e : edges) {
-    const float length = (e.b - e.a).norm();
+    const float length = (e[1] - e[0]).norm();
     const int samples = std::max(1, static_cast<int>(std::ceil(length / (0.5f * h))));
     int hit = 0;
     std::map<std::size_t, int> samples_of_line;
     for (int s = 0; s < samples; ++s) {
-      const Vec3f p = e.a + ((static_cast<float>(s) + 0.5f) / static_cast<float>(samples)) * (e.b - e.a);
+      const Vec3f p = e[0] + ((static_cast<float>(s) + 0.5f) / static_cast<float>(samples)) * (e[1] - e[0]);
       bool covered = false;
       for (std::size_t l = 0; l < lines.size(); ++l)
         if (polyline_distance(p, *lines[l]) <= tol) {
@@ -90,7 +89,8 @@ double precision(const std::vector<const Polyline*>& lines, const std::vector<Se
   for (const Polyline* l : lines)
     for (const Vec3f& p : l->points) {
       ++total;
-      near += std::any_of(edges.begin(), edges.end(), [&](const Segment& e) { return segment_distance(p, e.a, e.b) <= tol; });
+      near += std::any_of(edges.begin(), edges.end(),
+                          [&](const Segment& e) { return segment_distance(p, e[0], e[1]) <= tol; });
     }
   return total ? static_cast<double>(near) / static_cast<double>(total) : 1.0;
 }
@@ -233,8 +233,10 @@ TEST(RidgeValleyLines, NotchedBoxInnerEdgesAreValleysOuterEdgesRidges) {
   add_rectangle(mesh, {-w, -Y, floor}, {2 * w, 0, 0}, ey);          // notch floor
   const Analysed r = run(io::sample_mesh(mesh, {.n = 30000, .seed = 9}));
   const float h = r.surface.spacing;
-  const std::vector<Segment> inner = {{{-w, -Y, floor}, {-w, Y, floor}}, {{w, -Y, floor}, {w, Y, floor}}};
-  const std::vector<Segment> rim = {{{-w, -Y, top}, {-w, Y, top}}, {{w, -Y, top}, {w, Y, top}}};
+  const std::vector<Segment> inner = {Segment{Vec3f(-w, -Y, floor), Vec3f(-w, Y, floor)},
+                                      Segment{Vec3f(w, -Y, floor), Vec3f(w, Y, floor)}};
+  const std::vector<Segment> rim = {Segment{Vec3f(-w, -Y, top), Vec3f(-w, Y, top)},
+                                    Segment{Vec3f(w, -Y, top), Vec3f(w, Y, top)}};
   const auto valleys = of_kind(r.result.lines, LineKind::Valley);
   const auto ridges = of_kind(r.result.lines, LineKind::Ridge);
   const Coverage valley_cover = coverage(inner, valleys, h, 2.f * h);
@@ -247,39 +249,7 @@ TEST(RidgeValleyLines, NotchedBoxInnerEdgesAreValleysOuterEdgesRidges) {
   EXPECT_GE(precision(valleys, inner, 2.f * h), 0.95);
 }
 
-// Sharp edges of a mesh (dihedral angle above `degrees`), split into convex and concave ones.
-struct SharpEdges {
-  std::vector<Segment> convex, concave;
-};
-
-SharpEdges sharp_edges(const Mesh& mesh, float degrees) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> faces_of_edge;
-  for (std::uint32_t f = 0; f < mesh.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
-      faces_of_edge[{std::min(a, b), std::max(a, b)}].push_back(f);
-    }
-  const auto normal = [&](std::uint32_t f) {
-    const auto& t = mesh.faces[f];
-    return Vec3f((mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).normalized());
-  };
-  const float cos_limit = std::cos(degrees * std::numbers::pi_v<float> / 180.f);
-  SharpEdges out;
-  for (const auto& [edge, faces] : faces_of_edge) {
-    if (faces.size() != 2) continue;
-    const Vec3f n0 = normal(faces[0]), n1 = normal(faces[1]);
-    if (n0.dot(n1) > cos_limit) continue;
-    // Convex when the far vertex of the second face lies below the first face's plane (outward normals).
-    std::uint32_t far = 0;
-    for (std::uint32_t v : mesh.faces[faces[1]])
-      if (v != edge.first && v != edge.second) far = v;
-    const Segment s{mesh.vertices[edge.first], mesh.vertices[edge.second]};
-    ((mesh.vertices[far] - s.a).dot(n0) < 0.f ? out.convex : out.concave).push_back(s);
-  }
-  return out;
-}
-
-void expect_fandisk_edges(const Analysed& r, const SharpEdges& sharp, double min_convex, double min_concave) {
+void expect_fandisk_edges(const Analysed& r, const test::SharpEdges& sharp, double min_convex, double min_concave) {
   const float h = r.surface.spacing;
   const Coverage convex = coverage(sharp.convex, of_kind(r.result.lines, LineKind::Ridge), h, 2.f * h);
   const Coverage concave = coverage(sharp.concave, of_kind(r.result.lines, LineKind::Valley), h, 2.f * h);
@@ -292,7 +262,7 @@ void expect_fandisk_edges(const Analysed& r, const SharpEdges& sharp, double min
 TEST(RidgeValleyLines, FandiskSharpEdges) {
   const std::string path = std::string(PCSKETCH_FIXTURES) + "/fandisk.off";
   const Mesh mesh = io::read_mesh(path);
-  const SharpEdges sharp = sharp_edges(mesh, 40.f);
+  const test::SharpEdges sharp = test::sharp_edges(mesh, 40.f);
   ASSERT_GT(sharp.convex.size(), 100u);
   ASSERT_GT(sharp.concave.size(), 20u);
   // The sample shares the mesh's origin, so mesh and cloud coordinates agree.
@@ -307,7 +277,7 @@ TEST(RidgeValleyLines, FandiskVertices) {
   // The 6,475 non-uniform CAD vertices (large triangles between dense strips along the edges): 0.90 convex and 0.99
   // concave measured. Orientation across the sharp edges decides this: with Hoppe's |n_i·n_j| criterion a third of
   // the normals came out inward, their edges read with the wrong sign, and coverage fell to about 0.61.
-  expect_fandisk_edges(run(std::move(read.cloud)), sharp_edges(mesh, 40.f), 0.85, 0.85);
+  expect_fandisk_edges(run(std::move(read.cloud)), test::sharp_edges(mesh, 40.f), 0.85, 0.85);
 }
 
 }  // namespace

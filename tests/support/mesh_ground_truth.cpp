@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <tuple>
 
 namespace pcsketch::test {
@@ -106,44 +107,36 @@ double fraction_matched(const std::vector<Vec2f>& queries, const SampleGrid& tar
   return static_cast<double>(hits) / static_cast<double>(queries.size());
 }
 
-}  // namespace
+/// The faces around one edge of a mesh.
+struct EdgeFaces {
+  std::uint32_t u = 0, v = 0;        ///< its vertices, u < v
+  std::vector<std::uint32_t> faces;  ///< in increasing order
+};
 
-MeshContours mesh_contours(const Mesh& mesh, const view::Camera& camera, const MeshContourOptions& options) {
-  // Facing of every face: front when its normal points toward the viewer.
-  std::vector<char> front(mesh.faces.size());
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const Vec3f& a = mesh.vertices[mesh.faces[f][0]];
-    const Vec3f& b = mesh.vertices[mesh.faces[f][1]];
-    const Vec3f& c = mesh.vertices[mesh.faces[f][2]];
-    const Vec3f normal = (b - a).cross(c - a);
-    front[f] = normal.dot(camera.ray_direction((a + b + c) / 3.f)) < 0 ? 1 : 0;
-  }
-  // Edges with the faces around them, grouped by sorting.
-  std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> edges;
-  edges.reserve(3 * mesh.faces.size());
+/// Every edge of `mesh` with the faces around it, edges in increasing (u, v) order.
+std::vector<EdgeFaces> edge_faces(const Mesh& mesh) {
+  std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> incidences;
+  incidences.reserve(3 * mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     for (int e = 0; e < 3; ++e) {
       const std::uint32_t u = mesh.faces[f][e], v = mesh.faces[f][(e + 1) % 3];
-      edges.emplace_back(std::min(u, v), std::max(u, v), static_cast<std::uint32_t>(f));
+      incidences.emplace_back(std::min(u, v), std::max(u, v), static_cast<std::uint32_t>(f));
     }
-  std::sort(edges.begin(), edges.end());
-
-  MeshContours out;
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    int fronts = 0, backs = 0;
-    while (j < edges.size() && std::get<0>(edges[j]) == std::get<0>(edges[i]) &&
-           std::get<1>(edges[j]) == std::get<1>(edges[i])) {
-      (front[std::get<2>(edges[j])] ? fronts : backs) += 1;
-      ++j;
-    }
-    if (j - i == 1 || (fronts > 0 && backs > 0))
-      out.edges.push_back({mesh.vertices[std::get<0>(edges[i])], mesh.vertices[std::get<1>(edges[i])]});
-    i = j;
+  std::sort(incidences.begin(), incidences.end());
+  std::vector<EdgeFaces> out;
+  for (const auto& [u, v, f] : incidences) {
+    if (out.empty() || out.back().u != u || out.back().v != v) out.push_back({u, v, {}});
+    out.back().faces.push_back(f);
   }
+  return out;
+}
 
-  const DepthBuffer buffer = rasterise(mesh, camera);
-  for (const auto& [a, b] : out.edges) {
+/// Samples `edges` in the image every `options.sample_step_px` and sorts the samples by the z-buffer test (see
+/// MeshContourOptions); samples outside the image, or behind a perspective eye, are dropped.
+EdgeSamples sample_edges(const std::vector<std::array<Vec3f, 2>>& edges, const DepthBuffer& buffer,
+                         const view::Camera& camera, const MeshContourOptions& options) {
+  EdgeSamples out;
+  for (const auto& [a, b] : edges) {
     const Vec3f pa = camera.project(a), pb = camera.project(b);
     const float length_px = (pb.head<2>() - pa.head<2>()).norm();
     const int steps = std::max(1, static_cast<int>(std::ceil(length_px / options.sample_step_px)));
@@ -163,6 +156,60 @@ MeshContours mesh_contours(const Mesh& mesh, const view::Camera& camera, const M
       (seen ? out.visible : out.hidden).push_back(q.head<2>());
     }
   }
+  return out;
+}
+
+/// Unnormalised normal of face `f`: (b - a) × (c - a).
+Vec3f face_normal(const Mesh& mesh, std::size_t f) {
+  const Vec3f& a = mesh.vertices[mesh.faces[f][0]];
+  return (mesh.vertices[mesh.faces[f][1]] - a).cross(mesh.vertices[mesh.faces[f][2]] - a);
+}
+
+}  // namespace
+
+MeshContours mesh_contours(const Mesh& mesh, const view::Camera& camera, const MeshContourOptions& options) {
+  // Facing of every face: front when its normal points toward the viewer.
+  std::vector<char> front(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Vec3f centre =
+        (mesh.vertices[mesh.faces[f][0]] + mesh.vertices[mesh.faces[f][1]] + mesh.vertices[mesh.faces[f][2]]) / 3.f;
+    front[f] = face_normal(mesh, f).dot(camera.ray_direction(centre)) < 0 ? 1 : 0;
+  }
+  MeshContours out;
+  for (const EdgeFaces& edge : edge_faces(mesh)) {
+    const auto fronts = static_cast<std::size_t>(
+        std::count_if(edge.faces.begin(), edge.faces.end(), [&](std::uint32_t f) { return front[f] != 0; }));
+    if (edge.faces.size() == 1 || (fronts > 0 && fronts < edge.faces.size()))
+      out.edges.push_back({mesh.vertices[edge.u], mesh.vertices[edge.v]});
+  }
+  EdgeSamples samples = sample_edges(out.edges, rasterise(mesh, camera), camera, options);
+  out.visible = std::move(samples.visible);
+  out.hidden = std::move(samples.hidden);
+  return out;
+}
+
+SharpEdges sharp_edges(const Mesh& mesh, float degrees) {
+  const float cos_limit = std::cos(degrees * std::numbers::pi_v<float> / 180.f);
+  SharpEdges out;
+  for (const EdgeFaces& edge : edge_faces(mesh)) {
+    if (edge.faces.size() != 2) continue;
+    const Vec3f n0 = face_normal(mesh, edge.faces[0]).normalized(), n1 = face_normal(mesh, edge.faces[1]).normalized();
+    if (n0.dot(n1) > cos_limit) continue;
+    std::uint32_t far = 0;
+    for (std::uint32_t v : mesh.faces[edge.faces[1]])
+      if (v != edge.u && v != edge.v) far = v;
+    const std::array<Vec3f, 2> segment{mesh.vertices[edge.u], mesh.vertices[edge.v]};
+    ((mesh.vertices[far] - segment[0]).dot(n0) < 0.f ? out.convex : out.concave).push_back(segment);
+  }
+  return out;
+}
+
+MeshSharpEdges mesh_sharp_edges(const Mesh& mesh, const view::Camera& camera, float degrees,
+                                const MeshContourOptions& options) {
+  MeshSharpEdges out{.edges = sharp_edges(mesh, degrees)};
+  const DepthBuffer buffer = rasterise(mesh, camera);
+  out.convex = sample_edges(out.edges.convex, buffer, camera, options);
+  out.concave = sample_edges(out.edges.concave, buffer, camera, options);
   return out;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
-// Ground truth for view-dependent lines, computed from a triangle mesh: the occluding contours a camera sees, and a
-// precision/recall score of drawn lines against them. Used by the view tests and by benches scoring drawings.
+// Ground truth computed from a triangle mesh: its sharp edges, the occluding contours and sharp edges a camera sees,
+// and a precision/recall score of drawn lines against them. Used by the feature and view tests and by benches
+// scoring drawings.
 
 #include <array>
 #include <cstdint>
@@ -12,8 +13,9 @@
 
 namespace pcsketch::test {
 
+/// How mesh edges are sampled in the image and their visibility decided (occluding contours and sharp edges alike).
 struct MeshContourOptions {
-  /// Contour edges are sampled every this many pixels (image distance).
+  /// Edges are sampled every this many pixels (image distance).
   float sample_step_px = 0.5f;
   /// A sample is visible when some pixel within this many pixels (a (2w+1)² window) holds a depth not in front of
   /// it: at a silhouette the pixels on its far side show the background or a farther surface, while a sample behind
@@ -34,6 +36,33 @@ struct MeshContours {
 /// Occluding contours of `mesh` seen by `camera`, their visibility decided by a z-buffer of the mesh rasterised at
 /// the camera's image size (perspective depths interpolated as 1/depth). Samples outside the image are dropped.
 MeshContours mesh_contours(const Mesh& mesh, const view::Camera& camera, const MeshContourOptions& options = {});
+
+/// Sharp edges of a mesh, 3D, relative coordinates.
+struct SharpEdges {
+  std::vector<std::array<Vec3f, 2>> convex, concave;
+};
+
+/// Edges of `mesh` shared by exactly two faces whose normals differ by more than `degrees`. An edge is convex when
+/// the far vertex of its second face lies below the plane of its first face (faces wound with outward normals).
+SharpEdges sharp_edges(const Mesh& mesh, float degrees);
+
+/// Image samples of some edges, sorted by visibility.
+struct EdgeSamples {
+  std::vector<Vec2f> visible;  ///< image positions (pixels) of the visible samples
+  std::vector<Vec2f> hidden;   ///< image positions of the hidden samples
+};
+
+/// What a camera sees of a mesh's sharp edges.
+struct MeshSharpEdges {
+  SharpEdges edges;     ///< every sharp edge, seen or not
+  EdgeSamples convex;   ///< samples of the convex edges (ground truth of ridge lines)
+  EdgeSamples concave;  ///< samples of the concave edges (ground truth of valley lines)
+};
+
+/// The sharp edges of `mesh` (dihedral angle above `degrees`) seen by `camera`: sampled in the image and their
+/// visibility decided by the same z-buffer test as mesh_contours(). Samples outside the image are dropped.
+MeshSharpEdges mesh_sharp_edges(const Mesh& mesh, const view::Camera& camera, float degrees,
+                                const MeshContourOptions& options = {});
 
 /// Precision and recall of drawn lines against ground truth, both given as dense 2D samples.
 struct LineMatch {
