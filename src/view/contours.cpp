@@ -311,6 +311,31 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
   return lines;
 }
 
+/// Each point's spacing unit for the outline: h, or where the cloud is sparser the local spacing (see
+/// ContourOptions::adaptive_spacing).
+std::vector<float> spacing_units(const neighbourhood::Neighbourhoods& neighbourhoods, float h, std::size_t n,
+                                 bool adaptive) {
+  if (!adaptive || neighbourhoods.size() != n || neighbourhoods.k == 0) return std::vector<float>(n, h);
+  const std::size_t k = neighbourhoods.k;
+  std::vector<float> far(n), sorted(n);
+  for (std::size_t i = 0; i < n; ++i) far[i] = neighbourhoods.distances_of(i)[k - 1];
+  sorted = far;
+  const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(n / 2);
+  std::nth_element(sorted.begin(), mid, sorted.end());
+  if (!(*mid > 0)) return std::vector<float>(n, h);
+  // Averaged over the neighbours: one point's k-th distance scatters by about 30% on a random sampling.
+  const float to_h = h / *mid;
+  std::vector<float> unit(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      float sum = far[i];
+      for (const std::uint32_t j : neighbourhoods.of(i)) sum += far[j];
+      unit[i] = std::max(h, to_h * sum / static_cast<float>(k + 1));
+    }
+  });
+  return unit;
+}
+
 }  // namespace
 
 nlohmann::json ContourOptions::to_json() const {
@@ -331,7 +356,8 @@ nlohmann::json ContourOptions::to_json() const {
           {"interior_neighbours", interior_neighbours},
           {"interior_dedupe_factor", interior_dedupe_factor},
           {"interior_trace_radius_factor", interior_trace_radius_factor},
-          {"interior_z_max_factor", interior_z_max_factor}};
+          {"interior_z_max_factor", interior_z_max_factor},
+          {"adaptive_spacing", adaptive_spacing}};
 }
 
 ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
@@ -345,6 +371,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       throw Error("contours: interior contours need the cloud's neighbourhoods (run analyse_surface)");
   }
   ContourPoints cp;
+  const std::vector<float> unit = spacing_units(neighbourhoods, spacing, n, o.adaptive_spacing);
   cp.projected.resize(n);
   cp.spacing_px.resize(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -352,7 +379,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       cp.projected[i] = camera.project(positions[i]);
       const float depth = cp.projected[i].z();
       const bool in_front = camera.projection == Projection::Orthographic || depth > 0;
-      cp.spacing_px[i] = in_front && cp.projected[i].allFinite() ? spacing / camera.units_per_pixel(depth) : 0.f;
+      cp.spacing_px[i] = in_front && cp.projected[i].allFinite() ? unit[i] / camera.units_per_pixel(depth) : 0.f;
     }
   });
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "pcsketch/core/error.h"
 #include "support/analytic_shapes.h"
@@ -48,6 +49,36 @@ TEST(Contours, PaperDirectionGuidedRuleAlsoClosesTheSphere) {
   EXPECT_TRUE(contours[0]->line.closed);
   const Vec3f centre = view.camera.project(Vec3f::Zero());
   EXPECT_LT(max_circle_error(*contours[0], centre.head<2>(), view.camera.scale), 3.f);
+}
+
+// A sphere whose density falls smoothly from the top to the bottom, 9× (spacing 3×), as on mesh vertices: the
+// outline's lengths follow the local spacing, so the sparse bottom closes like the dense top. At the global h (the
+// paper's single radius) the sparse points read as holes: measured, a fragment inside the disc and a 5 px error.
+TEST(Contours, UnevenSamplingKeepsTheOutlineClosed) {
+  const PointCloud dense = test::sphere(1.f, {.n = 60000, .seed = 31});
+  PointCloud cloud;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> uniform(0.f, 1.f);
+  for (std::size_t i = 0; i < dense.size(); ++i) {
+    const float t = 0.5f * (dense.positions[i].y() + 1.f);
+    if (uniform(rng) < 1.f / 9.f + (8.f / 9.f) * t * t) {
+      cloud.positions.push_back(dense.positions[i]);
+      cloud.normals.push_back(dense.normals[i]);
+    }
+  }
+  const Analysed sphere(std::move(cloud));
+  const ViewResult view = sphere.view({.width = 1024, .height = 1024});
+  const auto contours = contours_of(view);
+  ASSERT_EQ(contours.size(), 1u);
+  EXPECT_TRUE(contours[0]->line.closed);
+  const Vec3f centre = view.camera.project(Vec3f::Zero());
+  EXPECT_LT(max_circle_error(*contours[0], centre.head<2>(), view.camera.scale), 2.f);
+
+  const ViewResult paper = sphere.view({.width = 1024, .height = 1024}, {}, {.contours = {.adaptive_spacing = false}});
+  const auto pieces = contours_of(paper);
+  ASSERT_FALSE(pieces.empty());
+  EXPECT_TRUE(pieces.size() > 1 || max_circle_error(*pieces[0], centre.head<2>(), paper.camera.scale) > 2.f)
+      << "the global h traces the sparse half as well";
 }
 
 TEST(Contours, PerspectiveSphereOutlineIsTheConeTangentCircle) {
