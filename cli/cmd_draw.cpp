@@ -4,12 +4,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "commands.h"
+#include "options.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/pipeline.h"
@@ -49,19 +49,6 @@ CLI::Option* add_vec3(CLI::App* cmd, const std::string& name, const std::string&
   const std::string flag = name.substr(name.rfind(',') + 1);
   return cmd->add_option_function<std::string>(
       name, [flag, set](const std::string& s) { set(parse_vec3(flag, s)); }, help);
-}
-
-/// A flag taking one of the names of `names`, stored into `target` (enum values print badly through CLI11's
-/// transformers when the enum is a uint8_t, so the names are looked up here).
-template <class Enum>
-CLI::Option* add_enum(CLI::App* cmd, const std::string& name, Enum& target, const std::map<std::string, Enum>& names,
-                      const std::string& help) {
-  std::vector<std::string> keys;
-  for (const auto& entry : names) keys.push_back(entry.first);
-  return cmd
-      ->add_option_function<std::string>(
-          name, [&target, names](const std::string& s) { target = names.at(s); }, help)
-      ->check(CLI::IsMember(keys));
 }
 
 void write_all(const Drawing& drawing, const std::vector<std::string>& paths, const render::RenderOptions& render) {
@@ -182,50 +169,8 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str()
       ->group(cam);
 
-  // Surface analysis (foundation issue).
-  const std::string surf = "Surface";
-  cmd->add_option("--neighbours", o.surface.neighbourhood.k, "Paper's k: neighbours per point (normals, curvature)")
-      ->capture_default_str()
-      ->check(CLI::Range(3, 256))
-      ->group(surf);
-  cmd->add_flag("--recompute-normals", o.surface.recompute_normals, "Ignore the file's normals, estimate them by PCA")
-      ->group(surf);
-
-  // Ridge and valley lines (paper §IV.A).
-  const std::string feat = "Ridge/valley lines (paper IV.A)";
-  cmd->add_option("--alpha", o.features.detection.ridge_threshold_alpha,
-                  "Paper's alpha: a ridge/valley point's curvature is at least alpha times the extreme of its side "
-                  "(smaller: more lines)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0))
-      ->group(feat);
-  add_enum(cmd, "--detection", o.features.detection.rule,
-           {{"salient", features::DetectionRule::Salient}, {"paper", features::DetectionRule::Paper}},
-           "salient (paper's rule + saliency floors and non-maximum suppression) or paper (the plain rule)")
-      ->group(feat);
-  add_enum(cmd, "--extreme", o.features.detection.extreme,
-           {{"percentile", features::CurvatureExtreme::Percentile}, {"minmax", features::CurvatureExtreme::MinMax}},
-           "Extreme curvature of the rule: percentile (robust) or minmax (the paper's)")
-      ->group(feat);
-  cmd->add_option("--radius", o.features.tracing.radius_factor, "Paper's r: tracing radius in units of h (spacing)")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber)
-      ->group(feat);
-  cmd->add_option("--join-distance", o.features.joining.join_distance_alpha,
-                  "Join endpoints closer than this times r (paper: alpha*r)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(feat);
-  cmd->add_option("--beta", o.features.joining.join_angle_beta_deg,
-                  "Paper's beta: largest angle between end tangents when joining lines, degrees")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 90.0))
-      ->group(feat);
-  cmd->add_option("--min-length", o.features.joining.min_length_factor,
-                  "Drop ridge/valley lines shorter than this, in units of h")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(feat);
+  add_surface_options(cmd, o.surface);
+  add_ridge_valley_options(cmd, o.features);
 
   // Contours and visibility (paper §IV.B).
   const std::string view_group = "Contours and visibility (paper IV.B)";

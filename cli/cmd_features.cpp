@@ -3,11 +3,11 @@
 
 #include <cstdio>
 #include <fstream>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "commands.h"
+#include "options.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/differential/surface.h"
 #include "pcsketch/features/ridge_valley_lines.h"
@@ -25,12 +25,6 @@ struct FeaturesArgs {
   features::RidgeValleyOptions features;
   bool ascii = false;
 };
-
-template <typename Enum>
-CLI::Option* add_enum(CLI::App* cmd, const std::string& name, Enum& target, const std::map<std::string, Enum>& names,
-                      const std::string& help) {
-  return cmd->add_option(name, target, help)->transform(CLI::CheckedTransformer(names, CLI::ignore_case));
-}
 
 // The per-point arrays in file order (analyse_surface reorders the cloud; source_index maps back).
 template <typename T>
@@ -138,95 +132,8 @@ void add_features_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--lines", args->lines_path, "Also write the ridge/valley polylines (world coordinates) as JSON");
   cmd->add_flag("--ascii", args->ascii, "Write ascii PLY instead of binary little-endian");
 
-  const std::string surf = "Surface analysis";
-  cmd->add_option("--neighbours", args->surface.neighbourhood.k, "Neighbours per point (normals, curvature)")
-      ->capture_default_str()
-      ->check(CLI::Range(3, 256))
-      ->group(surf);
-  cmd->add_flag("--recompute-normals", args->surface.recompute_normals,
-                "Ignore the file's normals, estimate them by PCA")
-      ->group(surf);
-
-  features::DetectionOptions& det = args->features.detection;
-  const std::string dgroup = "Detection";
-  cmd->add_option("--alpha", det.ridge_threshold_alpha,
-                  "Paper's alpha: |k| at least alpha times the extreme curvature of its side (smaller: more points)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0))
-      ->group(dgroup);
-  add_enum(cmd, "--detection", det.rule,
-           {{"salient", features::DetectionRule::Salient}, {"paper", features::DetectionRule::Paper}},
-           "salient (paper's rule + saliency floors + non-maximum suppression) or paper (the plain rule)")
-      ->group(dgroup);
-  add_enum(cmd, "--extreme", det.extreme,
-           {{"percentile", features::CurvatureExtreme::Percentile}, {"minmax", features::CurvatureExtreme::MinMax}},
-           "Extreme curvature of each side: percentile (robust) or minmax (the paper's)")
-      ->group(dgroup);
-  cmd->add_option("--extreme-percentile", det.extreme_percentile, "Percentile taken as the extreme, 0-100")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 100.0))
-      ->group(dgroup);
-  cmd->add_option("--saliency-floor", det.saliency_floor,
-                  "Salient rule: |k|*h must reach this (radius of curvature at most h/floor)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(dgroup);
-  cmd->add_option("--median-factor", det.median_factor, "Salient rule: |k| must reach this times the median |k|")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(dgroup);
-  cmd->add_flag("!--no-suppression", det.non_maximum_suppression,
-                "Salient rule: keep the whole band of high curvature (no non-maximum suppression across ridges)")
-      ->group(dgroup);
-  cmd->add_option("--suppression-cone", det.suppression_cone_deg,
-                  "Half-angle (degrees) around the principal direction in which neighbours compete")
-      ->capture_default_str()
-      ->check(CLI::Range(1.0, 89.0))
-      ->group(dgroup);
-
-  features::TraceOptions& tr = args->features.tracing;
-  const std::string tgroup = "Tracing";
-  cmd->add_option("--radius", tr.radius_factor, "Paper's r: tracing radius in units of h (mean spacing)")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber)
-      ->group(tgroup);
-  cmd->add_option("--radius-abs", tr.radius, "Tracing radius r in model units (overrides --radius)")
-      ->check(CLI::PositiveNumber)
-      ->group(tgroup);
-  cmd->add_option("--corridor", tr.corridor_fraction, "Corridor half-width around the direction, fraction of r")
-      ->capture_default_str()
-      ->check(CLI::Range(0.01, 1.0))
-      ->group(tgroup);
-  cmd->add_option("--max-turn", tr.max_turn_deg, "Sharpest turn per step (degrees) before a line ends")
-      ->capture_default_str()
-      ->check(CLI::Range(1.0, 90.0))
-      ->group(tgroup);
-
-  features::JoinOptions& jo = args->features.joining;
-  const std::string jgroup = "Joining";
-  cmd->add_option("--join-distance", jo.join_distance_alpha, "Join endpoints closer than this times r (paper: alpha*r)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(jgroup);
-  cmd->add_option("--beta", jo.join_angle_beta_deg, "Paper's beta: end tangents must face each other within beta, deg")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 90.0))
-      ->group(jgroup);
-  cmd->add_option("--min-length", jo.min_length_factor, "Drop lines shorter than this, in units of h")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(jgroup);
-  cmd->add_option("--min-length-abs", jo.min_length, "Minimum line length in model units (overrides --min-length)")
-      ->check(CLI::NonNegativeNumber)
-      ->group(jgroup);
-  cmd->add_option("--smooth", jo.smoothing_iterations, "Laplacian smoothing passes (endpoints fixed), 0 = off")
-      ->capture_default_str()
-      ->check(CLI::Range(0, 100))
-      ->group(jgroup);
-  cmd->add_option("--smooth-weight", jo.smoothing_weight, "Weight of one smoothing pass, 0-1")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0))
-      ->group(jgroup);
+  add_surface_options(cmd, args->surface);
+  add_ridge_valley_options(cmd, args->features);
   cmd->callback([args, &global] { run_features(*args, global); });
 }
 

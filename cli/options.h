@@ -1,0 +1,36 @@
+#pragma once
+// Flag blocks shared by several subcommands: one registration per option struct, so `features` and `draw` accept
+// the same names, checks and defaults and describe them in the same words.
+
+#include <CLI/CLI.hpp>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "pcsketch/differential/surface.h"
+#include "pcsketch/features/ridge_valley_lines.h"
+
+namespace pcsketch::cli {
+
+/// A flag taking one of the names of `names`, stored into `target` (enum values print badly through CLI11's
+/// transformers when the enum is a uint8_t, so the names are looked up here). Any other name is a usage error.
+template <class Enum>
+CLI::Option* add_enum(CLI::App* cmd, const std::string& name, Enum& target, const std::map<std::string, Enum>& names,
+                      const std::string& help) {
+  std::vector<std::string> keys;
+  for (const auto& entry : names) keys.push_back(entry.first);
+  return cmd
+      ->add_option_function<std::string>(
+          name, [&target, names](const std::string& s) { target = names.at(s); }, help)
+      ->check(CLI::IsMember(keys));
+}
+
+/// Surface analysis flags (--neighbours, --recompute-normals, --orientation, --outward) bound to `surface`, which
+/// must outlive the parse.
+void add_surface_options(CLI::App* cmd, differential::SurfaceOptions& surface);
+
+/// Ridge/valley flags of the paper's §IV.A (detection, tracing, joining) bound to `options`, which must outlive the
+/// parse.
+void add_ridge_valley_options(CLI::App* cmd, features::RidgeValleyOptions& options);
+
+}  // namespace pcsketch::cli
