@@ -28,7 +28,18 @@ void add_surface_options(CLI::App* cmd, differential::SurfaceOptions& surface) {
               CLI::Range(3, 256), group);
   cmd->add_flag("--recompute-normals", surface.recompute_normals, "Ignore the file's normals, estimate them by PCA")
       ->group(group);
-  // Orientation runs on estimated normals only (file normals keep their signs).
+  cmd->add_option_function<std::string>(
+         "--file-normals",
+         [&surface](const std::string& mode) {
+           surface.orient_file_normals = mode == "orient";
+           if (mode == "trust") surface.file_normal_disagreement = 1.0;
+         },
+         "Normals read from the file: auto (kept, but re-oriented when their signs disagree between neighbours), "
+         "trust (kept as they are) or orient (always re-oriented)")
+      ->check(CLI::IsMember({"auto", "trust", "orient"}))
+      ->default_str("auto")
+      ->group(group);
+  // Orientation runs on estimated normals, and on file normals when --file-normals re-orients them.
   add_enum(cmd, "--orientation", surface.orientation.criterion,
            {{"reflect", differential::OrientCriterion::Reflect}, {"parallel", differential::OrientCriterion::Parallel}},
            "Normal orientation test: reflect (König-Gumhold, crosses sharp edges) or parallel (Hoppe's |n_i.n_j|)")

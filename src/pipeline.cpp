@@ -40,6 +40,11 @@ nlohmann::json surface_options_json(const differential::SurfaceOptions& s) {
           {"curvature_k", s.curvature.k},
           {"recompute_normals", s.recompute_normals},
           {"orient_file_normals", s.orient_file_normals},
+          {"file_normal_disagreement", s.file_normal_disagreement},
+          {"orientation", s.orientation.criterion == differential::OrientCriterion::Reflect ? "reflect" : "parallel"},
+          {"outward", s.orientation.outward == differential::OutwardRule::Volume          ? "volume"
+                      : s.orientation.outward == differential::OutwardRule::FarthestPoint ? "farthest"
+                                                                                          : "none"},
           {"reorder", s.reorder}};
 }
 

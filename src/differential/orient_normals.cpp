@@ -1,9 +1,12 @@
 #include "pcsketch/differential/orient_normals.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "differential/common.h"
@@ -97,6 +100,26 @@ std::vector<Edge> sort_by_level(const std::vector<Edge>& edges) {
 }
 
 }  // namespace
+
+double sign_disagreement(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
+                         const neighbourhood::Neighbourhoods& neighbourhoods, OrientCriterion criterion) {
+  const std::size_t n = points.size();
+  detail::check_neighbourhoods("sign disagreement", n, neighbourhoods);
+  if (normals.size() != n)
+    throw Error("sign disagreement: " + std::to_string(normals.size()) + " normals for " + std::to_string(n) + " points");
+  const std::size_t edges = n * neighbourhoods.k;
+  if (edges == 0) return 0.0;
+  const std::size_t disagreeing = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n), std::size_t{0},
+      [&](const tbb::blocked_range<std::size_t>& range, std::size_t count) {
+        for (std::size_t i = range.begin(); i != range.end(); ++i)
+          for (const std::uint32_t j : neighbourhoods.of(i))
+            count += agreement(points[i], normals[i], points[j], normals[j], criterion) < -0.5f;
+        return count;
+      },
+      std::plus<>());
+  return static_cast<double>(disagreeing) / static_cast<double>(edges);
+}
 
 OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>& normals,
                             const neighbourhood::Neighbourhoods& neighbourhoods, const OrientOptions& options) {

@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "pcsketch/core/error.h"
 #include "pcsketch/neighbourhood/spacing.h"
@@ -84,7 +86,20 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options) {
     append(surface.warnings, normals.warnings);
     surface.normals_estimated = true;
   }
-  if (estimate || options.orient_file_normals) {
+  bool orient = estimate || options.orient_file_normals;
+  if (!orient) {
+    const double disagreement = timed(t.orientation, [&] {
+      return sign_disagreement(cloud.positions, cloud.normals, surface.neighbourhoods, options.orientation.criterion);
+    });
+    if (disagreement > options.file_normal_disagreement) {
+      char percent[16];
+      std::snprintf(percent, sizeof percent, "%.1f%%", 100.0 * disagreement);
+      surface.warnings.push_back(std::string("surface analysis: the file's normals are not consistently oriented (") +
+                                 percent + " of neighbour pairs disagree in sign); their signs were re-oriented");
+      orient = true;
+    }
+  }
+  if (orient) {
     const OrientResult orientation = timed(t.orientation, [&] {
       return orient_normals(cloud.positions, cloud.normals, surface.neighbourhoods,
                             with_progress(options.orientation, options.progress));

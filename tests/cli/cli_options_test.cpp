@@ -6,8 +6,11 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "cli_test_support.h"
+#include "pcsketch/io/ply.h"
+#include "support/analytic_shapes.h"
 
 namespace pcsketch {
 namespace {
@@ -54,6 +57,32 @@ TEST_F(CliOptions, DrawOrientationReachesTheSurfaceAnalysis) {
   };
   // Measured 194 points on ridge strokes (reflect) against 158 (parallel).
   EXPECT_GT(ridge_points("reflect"), ridge_points("parallel"));
+}
+
+// A file whose normals have arbitrary signs: by default their signs are re-oriented with a warning; `trust` keeps
+// them, `orient` always re-orients; the choice is recorded in the JSON.
+TEST_F(CliOptions, FileNormalsModes) {
+  PointCloud cloud = test::sphere(1.f, {.n = 3000, .seed = 8});
+  for (std::size_t i = 0; i < cloud.size(); i += 3) cloud.normals[i] = -cloud.normals[i];
+  const std::string input = path("flipped.ply");
+  io::write_ply(input, cloud);
+  auto draw = [&](const std::string& mode) {
+    const std::string json_path = path(mode + ".json");
+    const CommandRun r = run("draw " + input + " --size 128x128 --json " + json_path + " --file-normals " + mode);
+    EXPECT_EQ(r.status, 0) << r.err;
+    const nlohmann::json surface = nlohmann::json::parse(slurp(json_path))["parameters"]["surface"];
+    return std::make_pair(r.err.find("not consistently oriented") != std::string::npos, surface);
+  };
+  const auto [auto_warned, auto_surface] = draw("auto");
+  EXPECT_TRUE(auto_warned);
+  EXPECT_EQ(auto_surface["orient_file_normals"], false);
+  const auto [trust_warned, trust_surface] = draw("trust");
+  EXPECT_FALSE(trust_warned);
+  EXPECT_EQ(trust_surface["file_normal_disagreement"], 1.0);
+  const auto [orient_warned, orient_surface] = draw("orient");
+  EXPECT_FALSE(orient_warned);  // asked for: nothing to warn about
+  EXPECT_EQ(orient_surface["orient_file_normals"], true);
+  EXPECT_EQ(run("draw " + input + " --file-normals sometimes -o " + path("x.svg")).status, 1);
 }
 
 TEST_F(CliOptions, UnknownOrientationIsAUsageError) {

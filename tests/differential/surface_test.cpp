@@ -108,6 +108,27 @@ TEST(Surface, FileNormalsKeptUnlessRecomputed) {
   EXPECT_FALSE(recomputed.warnings.empty());
 }
 
+// Normals whose signs are arbitrary (some scanners and converters write them so): their directions are kept, their
+// signs re-oriented outward, with a warning. Consistent ones, even all inward, are kept as they are (above).
+TEST(Surface, FileNormalsWithArbitrarySignsAreReoriented) {
+  PointCloud cloud = test::sphere(1.f, {.n = 4000, .seed = 6});
+  const std::vector<Vec3f> exact = cloud.normals;
+  for (std::size_t i = 0; i < cloud.size(); i += 3) cloud.normals[i] = -cloud.normals[i];
+  const PointCloud flipped = cloud;
+  const Surface surface = analyse_surface(cloud);
+  EXPECT_FALSE(surface.normals_estimated);
+  ASSERT_EQ(surface.warnings.size(), 1u);
+  EXPECT_NE(surface.warnings[0].find("not consistently oriented"), std::string::npos) << surface.warnings[0];
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    ASSERT_NEAR(cloud.normals[i].dot(exact[cloud.source_index[i]]), 1.f, 1e-5f) << i;
+
+  PointCloud trusted = flipped;
+  const Surface as_read = analyse_surface(trusted, {.file_normal_disagreement = 1.0});
+  EXPECT_TRUE(as_read.warnings.empty());
+  for (std::size_t i = 0; i < trusted.size(); ++i)
+    ASSERT_NEAR(trusted.normals[i].dot(flipped.normals[trusted.source_index[i]]), 1.f, 1e-5f) << i;
+}
+
 /// Everything analyse_surface produces, for exact comparison.
 struct Snapshot {
   PointCloud cloud;

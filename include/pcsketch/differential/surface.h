@@ -24,6 +24,11 @@ struct SurfaceOptions {
   bool recompute_normals = false;
   /// Run the orientation pass over file normals too (for files whose normals have arbitrary signs).
   bool orient_file_normals = false;
+  /// File normals are also re-oriented, with a warning, when more than this fraction of neighbour pairs surely
+  /// disagree in sign (sign_disagreement): their directions are kept, their signs are not trusted. Consistent file
+  /// normals give about 0 (hippo1.ply 0.0000); building.ply's give 0.098, and drawn as they were its façades filled
+  /// with interior contours where the sign flipped. 1 never re-orients on its own.
+  double file_normal_disagreement = 0.01;
   bool reorder = true;             ///< sort points along a space-filling curve first (faster; source_index maps back)
   ProgressFn progress;             ///< optional, passed to every step whose own progress is empty
 };
