@@ -103,7 +103,8 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
         extensions.push_back(ext);
     }
     if (extensions.empty()) extensions.push_back(".png");
-    for (const auto& [stem, drawing] : stage_drawings(prepared, options.camera, options))
+    // Their warnings are the ones draw_view printed for the same camera.
+    for (const auto& [stem, drawing] : stage_drawings(prepared, options.camera, options).stages)
       for (const std::string& ext : extensions)
         render::write_drawing(drawing, fs::path(args.stages) / (stem + ext), options.render);
   }

@@ -268,9 +268,8 @@ DrawResult draw(PointCloud cloud, const DrawOptions& options) {
   return result;
 }
 
-std::vector<std::pair<std::string, Drawing>> stage_drawings(const Prepared& prepared,
-                                                            const view::CameraOptions& camera_options,
-                                                            const DrawOptions& options) {
+StageDrawings stage_drawings(const Prepared& prepared, const view::CameraOptions& camera_options,
+                             const DrawOptions& options) {
   const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera_options);
   const nlohmann::json parameters = parameters_json(prepared, options, camera_options);
   stylize::ThicknessOptions constant = options.thickness;
@@ -282,18 +281,20 @@ std::vector<std::pair<std::string, Drawing>> stage_drawings(const Prepared& prep
       {"d_fused", {{.contours = true, .ridges = true, .valleys = true, .hatching = false}, constant}},
       {"e_thickness", {{.contours = true, .ridges = true, .valleys = true, .hatching = false}, options.thickness}},
       {"f_shadow", {{.contours = true, .ridges = true, .valleys = true, .hatching = true}, options.thickness}}};
-  std::vector<std::pair<std::string, Drawing>> out;
+  StageDrawings out;
   if (!prepared.analysed()) {
     for (const auto& column : columns)
-      out.emplace_back(column.first, empty_drawing(camera, prepared.cloud.origin, parameters));
+      out.stages.emplace_back(column.first, empty_drawing(camera, prepared.cloud.origin, parameters));
     return out;
   }
-  // No warnings output here: they are the ones draw_view reports for the same camera.
-  Timings timings;
-  Warnings warnings;
-  const view::ViewResult v = compute_view(prepared, camera, options, timings, warnings);
-  for (const auto& [stem, request] : columns)
-    out.emplace_back(stem, style(prepared, v, request, options.shadow, parameters, timings, warnings));
+  const view::ViewResult v = compute_view(prepared, camera, options, out.timings, out.warnings);
+  // The five styles share one view; shading runs once per style but reports the same warnings each time.
+  Warnings style_warnings;
+  for (const auto& [stem, request] : columns) {
+    style_warnings.clear();
+    out.stages.emplace_back(stem, style(prepared, v, request, options.shadow, parameters, out.timings, style_warnings));
+  }
+  out.warnings.insert(out.warnings.end(), style_warnings.begin(), style_warnings.end());
   return out;
 }
 

@@ -111,11 +111,16 @@ DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera
 /// prepare() then draw_view() with options.camera. Timings and warnings of both steps.
 DrawResult draw(PointCloud cloud, const DrawOptions& options = {});
 
+/// The paper's Fig. 19 columns of one view, and what computing them took and reported.
+struct StageDrawings {
+  std::vector<std::pair<std::string, Drawing>> stages;  ///< (file stem such as "b_contours", drawing), in order
+  Timings timings;    ///< the view's stages (computed once for all five)
+  Warnings warnings;  ///< the view's and the shading's: the same draw_view reports for this camera
+};
+
 /// The paper's Fig. 19 columns for one view: (b) contours, (c) ridge-valley lines, (d) both fused (constant width),
-/// (e) with thickness, (f) with shadow. Each pair is (file stem such as "b_contours", drawing). The view is computed
-/// once and styled five times.
-std::vector<std::pair<std::string, Drawing>> stage_drawings(const Prepared& prepared,
-                                                            const view::CameraOptions& camera,
-                                                            const DrawOptions& options = {});
+/// (e) with thickness, (f) with shadow. The view is computed once and styled five times.
+StageDrawings stage_drawings(const Prepared& prepared, const view::CameraOptions& camera,
+                             const DrawOptions& options = {});
 
 }  // namespace pcsketch

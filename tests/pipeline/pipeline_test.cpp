@@ -90,7 +90,8 @@ TEST(Pipeline, StageDrawingsFollowThePapersFigure19Columns) {
   DrawOptions o = small_image();
   o.camera.direction = Vec3d(-1, -1, -1);
   const Prepared p = prepare(test::cube(1.f, {.n = 12000}), o);
-  const auto stages = stage_drawings(p, o.camera, o);
+  const StageDrawings result = stage_drawings(p, o.camera, o);
+  const auto& stages = result.stages;
   ASSERT_EQ(stages.size(), 5u);
   EXPECT_EQ(stages[0].first, "b_contours");
   EXPECT_EQ(stages[4].first, "f_shadow");
@@ -111,6 +112,20 @@ TEST(Pipeline, StageDrawingsFollowThePapersFigure19Columns) {
   };
   EXPECT_LT(width_spread(fused), 1e-4f);
   EXPECT_GT(width_spread(stages[3].second), 0.5f);
+}
+
+// A perspective eye beyond the sphere looking away from it: nothing in view. stage_drawings reports what draw_view
+// reports for the same camera.
+TEST(Pipeline, StageDrawingsReportTheViewsWarnings) {
+  const DrawOptions o = small_image();
+  const Prepared p = prepare(test::sphere(1.f, {.n = 4000}), o);
+  const view::CameraOptions away{
+      .projection = view::Projection::Perspective, .eye = Vec3d(0, 0, 5), .target = Vec3d(0, 0, 10)};
+  const DrawResult single = draw_view(p, away, o);
+  ASSERT_FALSE(single.warnings.empty());
+  const StageDrawings stages = stage_drawings(p, away, o);
+  EXPECT_EQ(stages.warnings, single.warnings);
+  EXPECT_GT(stages.timings.total(), 0.0);
 }
 
 TEST(Pipeline, TimingRowsAreThePapersTable2) {
