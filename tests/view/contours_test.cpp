@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "pcsketch/core/error.h"
 #include "support/analytic_shapes.h"
@@ -28,27 +29,29 @@ std::vector<const ViewLine*> contours_of(const ViewResult& view) {
   return out;
 }
 
+/// The view of a unit sphere at the origin has one contour, closed, within `tolerance_px` of the projected circle.
+const ViewLine& expect_one_closed_circle(const ViewResult& view, float tolerance_px) {
+  const auto contours = contours_of(view);
+  EXPECT_EQ(contours.size(), 1u);
+  if (contours.empty()) throw std::runtime_error("no contour");
+  EXPECT_TRUE(contours[0]->line.closed);
+  const Vec3f centre = view.camera.project(Vec3f::Zero());
+  EXPECT_LT(max_circle_error(*contours[0], centre.head<2>(), view.camera.scale), tolerance_px);
+  return *contours[0];
+}
+
 TEST(Contours, SphereHasOneClosedContourOnTheProjectedCircle) {
   const Analysed sphere(test::sphere(1.f, {.n = 30000}));
   const ViewResult view = sphere.view({.width = 1024, .height = 1024});
-  const auto contours = contours_of(view);
-  ASSERT_EQ(contours.size(), 1u);
-  EXPECT_TRUE(contours[0]->line.closed);
-  const Vec3f centre = view.camera.project(Vec3f::Zero());
-  EXPECT_LT(max_circle_error(*contours[0], centre.head<2>(), view.camera.scale), 1.f);
-  EXPECT_GT(contours[0]->line.size(), 100u);
+  const ViewLine& contour = expect_one_closed_circle(view, 1.f);
+  EXPECT_GT(contour.line.size(), 100u);
   // The outline of a convex body is seen everywhere.
-  for (const std::uint8_t v : contours[0]->visible) EXPECT_EQ(v, 1);
+  for (const std::uint8_t v : contour.visible) EXPECT_EQ(v, 1);
 }
 
 TEST(Contours, PaperDirectionGuidedRuleAlsoClosesTheSphere) {
   const Analysed sphere(test::sphere(1.f, {.n = 30000}));
-  const ViewResult view = sphere.view({}, {}, {.contours = {.connection = OutlineConnection::DirectionGuided}});
-  const auto contours = contours_of(view);
-  ASSERT_EQ(contours.size(), 1u);
-  EXPECT_TRUE(contours[0]->line.closed);
-  const Vec3f centre = view.camera.project(Vec3f::Zero());
-  EXPECT_LT(max_circle_error(*contours[0], centre.head<2>(), view.camera.scale), 3.f);
+  expect_one_closed_circle(sphere.view({}, {}, {.contours = {.connection = OutlineConnection::DirectionGuided}}), 3.f);
 }
 
 // A sphere whose density falls smoothly from the top to the bottom, 9× (spacing 3×), as on mesh vertices: the
@@ -67,16 +70,12 @@ TEST(Contours, UnevenSamplingKeepsTheOutlineClosed) {
     }
   }
   const Analysed sphere(std::move(cloud));
-  const ViewResult view = sphere.view({.width = 1024, .height = 1024});
-  const auto contours = contours_of(view);
-  ASSERT_EQ(contours.size(), 1u);
-  EXPECT_TRUE(contours[0]->line.closed);
-  const Vec3f centre = view.camera.project(Vec3f::Zero());
-  EXPECT_LT(max_circle_error(*contours[0], centre.head<2>(), view.camera.scale), 2.f);
+  expect_one_closed_circle(sphere.view({.width = 1024, .height = 1024}), 2.f);
 
   const ViewResult paper = sphere.view({.width = 1024, .height = 1024}, {}, {.contours = {.adaptive_spacing = false}});
   const auto pieces = contours_of(paper);
   ASSERT_FALSE(pieces.empty());
+  const Vec3f centre = paper.camera.project(Vec3f::Zero());
   EXPECT_TRUE(pieces.size() > 1 || max_circle_error(*pieces[0], centre.head<2>(), paper.camera.scale) > 2.f)
       << "the global h traces the sparse half as well";
 }
