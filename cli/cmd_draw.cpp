@@ -245,6 +245,10 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str()->check(CLI::PositiveNumber)->group(shade);
   cmd->add_flag("!--no-shade-blocks", o.shadow.shade_blocks, "Paper mode: no grey blocks, hatch strokes only")
       ->group(shade);
+  cmd->add_flag("!--shadow-over-background", o.shadow.clip_to_surface,
+                "Paper mode: draw the whole region between a line and its projection, also where the background "
+                "is seen through it (default: only over the surface)")
+      ->group(shade);
 
   // What is drawn and how it is written.
   const std::string out = "Output";

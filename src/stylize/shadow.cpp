@@ -116,7 +116,12 @@ LineShadow line_shadow(const ShadowInput& in, const Polyline& line, const std::v
       const Vec3f to_viewer = -cam.ray_direction(q);
       const float far = cam.projection == view::Projection::Perspective ? (cam.eye - q).norm()
                                                                         : std::numeric_limits<float>::infinity();
-      valid[i * (m + 1) + j] = !in.scene.occluded(q, to_viewer, o.visibility_offset_factor * h, far);
+      const float offset_to_viewer = o.visibility_offset_factor * h;
+      const bool seen = !in.scene.occluded(q, to_viewer, offset_to_viewer, far);
+      // From just in front of q, so that a point on the surface finds its own disc.
+      const bool over_surface = !o.clip_to_surface || in.scene.occluded(q + offset_to_viewer * to_viewer, -to_viewer,
+                                                                        0.f, std::numeric_limits<float>::infinity());
+      valid[i * (m + 1) + j] = seen && over_surface;
     }
   }
   auto ok = [&](std::size_t i, std::size_t j) { return valid[i * (m + 1) + j] != 0; };
@@ -222,6 +227,7 @@ nlohmann::json ShadowOptions::to_json() const {
           {"max_cast_factor", max_cast_factor},
           {"visibility_offset_factor", visibility_offset_factor},
           {"max_jump_factor", max_jump_factor},
+          {"clip_to_surface", clip_to_surface},
           {"cast_hatch_width_px", cast_hatch_width_px},
           {"cast_grey", {cast_grey_near, cast_grey_far}},
           {"shade_blocks", shade_blocks},

@@ -174,6 +174,28 @@ TEST(PaperShadow, MissesAndOccludersBreakHatching) {
   EXPECT_GT(outer, 10);
 }
 
+// A ridge in the air above empty space casting onto a small patch: the region between them is seen against the
+// background, except where it reaches the patch. Clipped to the surface, only the hatch line on the patch is drawn;
+// the paper's region draws all four over the background.
+TEST(PaperShadow, RegionOverTheBackgroundIsNotDrawn) {
+  const PointCloud patch = concat(PointCloud{}, test::plane(0.15f, {.n = 3000, .seed = 9}), Vec3f(0.5f, 0, 0));
+  // h = 0.01 puts the hit (0.71 away along the light) within max_cast_factor · h.
+  const Scene s(patch, 0.012f, 0.01f, {.direction = Vec3d(0, 0, -1), .width = 400, .height = 400});
+  const std::vector<Polyline> lines = {ridge({0, -0.1f, 0.5f}, {0, 0.1f, 0.5f}, 21)};
+  const ShadowOptions clipped{.mode = ShadowMode::Paper, .light = {.direction = Vec3f(1, 0, -1)}};
+  const ShadowResult r = s.shade(lines, clipped);
+  EXPECT_EQ(r.cast_vertices, 21u);
+  ASSERT_EQ(r.strokes.size(), 1u);
+  for (const Vec3f& p : r.strokes[0].points) EXPECT_NEAR(p.x(), 0.5f, 1e-4f);
+  EXPECT_TRUE(r.regions.empty());  // every block has an edge over the background
+
+  ShadowOptions paper = clipped;
+  paper.clip_to_surface = false;
+  const ShadowResult unclipped = s.shade(lines, paper);
+  EXPECT_EQ(unclipped.strokes.size(), 4u);
+  EXPECT_EQ(unclipped.regions.size(), 4u);
+}
+
 TEST(PaperShadow, LitRidgeOnSphereCastsNothing) {
   // A ridge circle on the sphere's lit cap: rays along the light enter the sphere and meet its far side from inside.
   const Scene s(test::sphere(1.f, {.n = 20000}), 0.05f, 0.025f, {.width = 400, .height = 400});

@@ -69,6 +69,11 @@ struct ShadowOptions {
   /// Hatch points are tested toward the camera from this offset (units of h) so the surface they lie next to does
   /// not hide them.
   float visibility_offset_factor = 2.f;
+  /// Beyond the paper: a hatch point is drawn only where the surface lies behind it as seen from the camera. The
+  /// points between a line and its projection are in the air; over a step they are seen against the step's face or
+  /// floor (the paper's Fig. 19 shadows), but a belly's ridge casting onto a leg put graded bands across the
+  /// background between the legs. Off: the paper's region, wherever it projects.
+  bool clip_to_surface = true;
   /// Hatch strokes break between two vertices whose projections lie farther apart than this many times
   /// max(h, the distance of the vertices): the shadow fell onto two different surfaces.
   float max_jump_factor = 8.f;
