@@ -16,6 +16,10 @@ struct SurfaceScene::Impl {
   RTCScene scene = nullptr;
   /// Embree works in float; the scene is recentred on the box centre so that far-from-origin clouds keep precision.
   Vec3f centre = Vec3f::Zero();
+  /// The geometry's buffers (x, y, z, radius per point; unit normal per point), owned by Embree, alive with `scene`.
+  const float* vertices = nullptr;
+  const float* normals = nullptr;
+  std::size_t size = 0;
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -99,6 +103,9 @@ SurfaceScene::SurfaceScene(const std::vector<Vec3f>& positions, const std::vecto
     disc_normals[3 * i + 1] = unit.y();
     disc_normals[3 * i + 2] = unit.z();
   }
+  impl_->vertices = vertices;
+  impl_->normals = disc_normals;
+  impl_->size = n;
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(impl_->scene, geometry);
   rtcReleaseGeometry(geometry);
@@ -134,6 +141,15 @@ bool SurfaceScene::occluded(const Vec3f& origin, const Vec3f& direction, float t
   rtcOccluded1(impl_->scene, &context, &ray);
   // Embree marks an occluded ray by setting tfar to -inf.
   return ray.tfar < 0.f;
+}
+
+std::size_t SurfaceScene::size() const { return impl_->size; }
+
+SurfaceDisc SurfaceScene::disc(std::uint32_t point) const {
+  PCS_ASSERT(point < impl_->size, "surface scene: disc index out of range");
+  const float* v = impl_->vertices + 4 * static_cast<std::size_t>(point);
+  const float* nrm = impl_->normals + 3 * static_cast<std::size_t>(point);
+  return {Vec3f(v[0], v[1], v[2]) + impl_->centre, Vec3f(nrm[0], nrm[1], nrm[2]), v[3]};
 }
 
 }  // namespace pcsketch::view

@@ -35,6 +35,21 @@ bool sees(const SurfaceScene& scene, const Camera& camera, const Vec3f& p, float
   return true;
 }
 
+/// Where each vertex of `line` casts its ray from: the vertex, lifted to its source point's tangent plane when it
+/// lies below it (VisibilityOptions::lift_to_source_plane).
+std::vector<Vec3f> ray_origins(const Polyline& line, const SurfaceScene& scene, bool lift) {
+  std::vector<Vec3f> origins = line.points;
+  if (!lift || line.point_index.size() != line.points.size()) return origins;
+  for (std::size_t i = 0; i < origins.size(); ++i) {
+    if (line.point_index[i] >= scene.size()) continue;
+    const SurfaceDisc disc = scene.disc(line.point_index[i]);
+    if (!(disc.radius > 0)) continue;
+    const float below = (disc.centre - origins[i]).dot(disc.normal);
+    if (below > 0) origins[i] += below * disc.normal;
+  }
+  return origins;
+}
+
 /// Majority vote over a centred window (wrapping on closed lines, shrinking at open ends).
 std::vector<std::uint8_t> smooth_flags(const std::vector<std::uint8_t>& raw, std::size_t window, bool closed) {
   const std::size_t n = raw.size();
@@ -94,6 +109,7 @@ nlohmann::json VisibilityOptions::to_json() const {
   return {{"self_offset_factor", self_offset_factor},
           {"grazing_cos", grazing_cos},
           {"grazing_range_factor", grazing_range_factor},
+          {"lift_to_source_plane", lift_to_source_plane},
           {"smoothing_window", smoothing_window},
           {"transition_refinement", transition_refinement}};
 }
@@ -125,9 +141,10 @@ std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const 
       const std::size_t n = vl.line.points.size();
       vl.projected.resize(n);
       std::vector<std::uint8_t> raw(n);
+      const std::vector<Vec3f> origins = ray_origins(vl.line, scene, o.lift_to_source_plane);
       for (std::size_t i = 0; i < n; ++i) {
         vl.projected[i] = camera.project(vl.line.points[i]);
-        raw[i] = sees(scene, camera, vl.line.points[i], offset, grazing_range, o) ? 1 : 0;
+        raw[i] = sees(scene, camera, origins[i], offset, grazing_range, o) ? 1 : 0;
       }
       vl.visible = smooth_flags(raw, o.smoothing_window, vl.line.closed);
       const std::size_t segments = n == 0 ? 0 : (vl.line.closed && n > 2 ? n : n - 1);
@@ -135,9 +152,9 @@ std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const 
       for (std::size_t s = 0; s < segments; ++s) {
         const std::size_t b = (s + 1) % n;
         if (vl.visible[s] == vl.visible[b]) continue;
-        // Bisect for the change point; the end with the smoothed flag of `s` is kept at lo.
+        // Bisect for the change point (between the ray origins); the end with the smoothed flag of `s` is kept at lo.
         float lo = 0.f, hi = 1.f;
-        const Vec3f pa = vl.line.points[s], pb = vl.line.points[b];
+        const Vec3f pa = origins[s], pb = origins[b];
         for (int it = 0; it < o.transition_refinement; ++it) {
           const float mid = 0.5f * (lo + hi);
           const bool v = sees(scene, camera, pa + mid * (pb - pa), offset, grazing_range, o);

@@ -76,6 +76,20 @@ TEST(SurfaceScene, LocalSpacingIsKthNeighbourDistanceClamped) {
   EXPECT_EQ(local_spacing(nb, /*kth=*/10), (std::vector<float>{0.4f, 0.7f}));
 }
 
+TEST(SurfaceScene, DiscsReadBackAsGiven) {
+  // Positions back in the caller's coordinates (the scene is recentred inside), normals unit, radius factor applied;
+  // a point without a normal keeps its index with radius 0.
+  const std::vector<Vec3f> p{Vec3f(5000.f, 1.f, 2.f), Vec3f(5001.f, -1.f, 0.5f), Vec3f(4999.f, 0.f, 0.f)};
+  const std::vector<Vec3f> n{Vec3f(0.f, 0.f, 2.f), Vec3f(3.f, 4.f, 0.f), Vec3f::Zero()};
+  const SurfaceScene scene(p, n, {0.1f, 0.2f, 0.3f}, {.disc_radius_factor = 1.5f});
+  ASSERT_EQ(scene.size(), 3u);
+  EXPECT_LT((scene.disc(0).centre - p[0]).norm(), 1e-3f);
+  EXPECT_LT((scene.disc(1).normal - Vec3f(0.6f, 0.8f, 0.f)).norm(), 1e-6f);
+  EXPECT_FLOAT_EQ(scene.disc(1).radius, 0.3f);
+  EXPECT_EQ(scene.disc(2).radius, 0.f);
+  EXPECT_THROW(scene.disc(3), Error);
+}
+
 TEST(SurfaceScene, EmptySceneHitsNothing) {
   const SurfaceScene scene({}, {}, {});
   EXPECT_FALSE(scene.occluded(Vec3f::Zero(), Vec3f::UnitZ(), 0.f, 1e9f));

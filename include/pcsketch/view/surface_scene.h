@@ -25,6 +25,13 @@ struct SurfaceHit {
   Vec3f normal = Vec3f::UnitZ();  ///< unit normal of that disc
 };
 
+/// One point's disc as the scene holds it.
+struct SurfaceDisc {
+  Vec3f centre = Vec3f::Zero();   ///< the point, relative coordinates
+  Vec3f normal = Vec3f::UnitZ();  ///< unit normal (UnitZ for a point without a usable normal)
+  float radius = 0;               ///< model units; 0 for a point without a usable normal (never hit)
+};
+
 /// Each point's local spacing: the distance to its `kth` nearest neighbour (1-based, clamped to the neighbourhood
 /// size). With kth = 4 discs of that radius cover a randomly sampled surface without holes (a disc of the 4th
 /// neighbour distance holds about 4 points), where the nearest-neighbour distance leaves gaps in sparse spots.
@@ -53,6 +60,11 @@ class SurfaceScene {
   std::optional<SurfaceHit> intersect(const Vec3f& origin, const Vec3f& direction, float t_near, float t_far) const;
   /// Whether any disc is hit with t in (t_near, t_far); cheaper than intersect.
   bool occluded(const Vec3f& origin, const Vec3f& direction, float t_near, float t_far) const;
+
+  /// Number of points (discs), as given to the constructor.
+  std::size_t size() const;
+  /// The disc of point `point` (< size()), read from the scene's own buffers (no copy of the cloud is kept).
+  SurfaceDisc disc(std::uint32_t point) const;
 
  private:
   struct Impl;

@@ -30,6 +30,14 @@ struct VisibilityOptions {
   float grazing_cos = 0.25f;
   /// Range of the grazing rule, in units of h.
   float grazing_range_factor = 20.0f;
+  /// A vertex below the tangent plane of the cloud point it was traced from (Polyline::point_index, as the scene's
+  /// disc of that point) casts its ray from that plane: it is moved along the disc's normal up to the plane, never
+  /// down. Ridge and valley lines run through the middle of their feature band, which at a convex sharp edge lies
+  /// inside the solid (fandisk sampled with 100k points: ridge vertices a median 0.3 h below the surface); from
+  /// there the ray crosses the discs of a face seen at a shallow angle a few h ahead, past the self offset, and a
+  /// seen edge is marked hidden. Lines without point_index are cast from their vertices. false: the paper's rule,
+  /// every ray from the line's own vertex.
+  bool lift_to_source_plane = true;
   /// Per-vertex flags are smoothed by a majority vote over this many consecutive vertices (odd; 1 = off): a single
   /// ray slipping through a gap between discs must not cut a hidden line.
   std::size_t smoothing_window = 3;
