@@ -193,6 +193,20 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("!--no-interior-contours", o.view.contours.interior,
                 "Only the outline: no occluding contours inside it (the paper's contours)")
       ->group(view_group);
+  cmd->add_flag("!--no-uneven-spacing", o.view.contours.adaptive_spacing,
+                "Outline lengths in units of the mean spacing everywhere (the paper's single radius), not of the "
+                "local spacing where the cloud is sparser")
+      ->group(view_group);
+  cmd->add_option("--self-offset", o.view.visibility.self_offset_factor,
+                  "Visibility rays start this far from a line vertex, units of h (past its own and its neighbours' "
+                  "discs)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(view_group);
+  cmd->add_flag("!--no-visibility-lift", o.view.visibility.lift_to_source_plane,
+                "Cast visibility rays from the line vertices themselves (the paper's), not lifted to the tangent "
+                "plane of their source points")
+      ->group(view_group);
   add_enum(cmd, "--hidden-lines", o.render.hidden_lines,
            {{"none", render::HiddenLines::None}, {"dashed", render::HiddenLines::Dashed}},
            "Hidden lines: none, or dashed (thin grey, in their own SVG layer)")

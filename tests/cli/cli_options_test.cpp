@@ -85,6 +85,19 @@ TEST_F(CliOptions, FileNormalsModes) {
   EXPECT_EQ(run("draw " + input + " --file-normals sometimes -o " + path("x.svg")).status, 1);
 }
 
+// The paper's rules that pcsketch replaces by default are each one flag away, and the JSON says which ran.
+TEST_F(CliOptions, PaperRulesReachTheJsonParameters) {
+  const std::string json_path = path("paper.json");
+  const CommandRun r = run("-q draw " PCSKETCH_DATA "/bunny.ply --size 128x128 --json " + json_path +
+                           " --no-uneven-spacing --no-visibility-lift --self-offset 2 --shadow-over-background");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json p = nlohmann::json::parse(slurp(json_path))["parameters"];
+  EXPECT_EQ(p["view"]["contours"]["adaptive_spacing"], false);
+  EXPECT_EQ(p["view"]["visibility"]["lift_to_source_plane"], false);
+  EXPECT_EQ(p["view"]["visibility"]["self_offset_factor"], 2.0);
+  EXPECT_EQ(p["shadow"]["clip_to_surface"], false);
+}
+
 TEST_F(CliOptions, UnknownOrientationIsAUsageError) {
   const std::string fandisk = PCSKETCH_FIXTURES "/fandisk.off";
   for (const std::string& command :
