@@ -27,7 +27,7 @@ draw() {
 
 draw sample data/bunny.ply --azimuth -35 --elevation 15
 draw bunny "$data/bunny.off"
-draw camel "$data/camel.off" --view 1,0,0
-draw fandisk "$data/fandisk.off" --view -1,-1,-1
+draw camel "$data/camel.off" --view 1,0.15,0.6
+draw fandisk "$data/fandisk.off" --view 1,1,1
 draw kitten "$data/kitten.xyz" --view 0,0,-1
 draw building "$data/building.ply" --up 0,0,1 --view 1,0.7,-0.6
