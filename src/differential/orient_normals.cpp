@@ -83,10 +83,11 @@ std::uint16_t level(float c) {
   return static_cast<std::uint16_t>(std::min<float>(kLevels - 1, std::sqrt(1.f - sure) * float(kLevels)));
 }
 
-/// A graph edge with its weight level.
+/// A graph edge with its weight level and whether its endpoints' normals disagree in sign.
 struct Edge {
   std::uint32_t from, to;
   std::uint16_t level;
+  std::uint8_t disagree;
 };
 
 /// `edges` stably sorted by level, by counting.
@@ -132,41 +133,49 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
   if (n == 0) return result;
   const std::size_t stride = neighbourhoods.k;
   const std::size_t k = detail::neighbours_used(options.k, neighbourhoods);
-  const auto agree = [&](std::size_t i, std::size_t j) {
-    return agreement(points[i], normals[i], points[j], normals[j], options.criterion);
-  };
-
   // Every undirected edge is listed once: by its smaller endpoint, or by the endpoint whose list holds it when the
   // other's does not (distance at or beyond that one's k-th neighbour; ties list it twice, which is harmless).
-  const auto edge_level = [&](std::size_t i, std::size_t m) -> std::uint16_t {
+  // Its slot (i, m) gets the edge's level, or kNoEdge, and the agreement's sign in kDisagree: the one evaluation of
+  // the agreement per edge.
+  constexpr std::uint16_t kDisagree = 0x8000;
+  const auto edge_slot = [&](std::size_t i, std::size_t m) -> std::uint16_t {
     const std::uint32_t j = neighbourhoods.indices[i * stride + m];
     const bool listed_by_j = neighbourhoods.distances[i * stride + m] < neighbourhoods.distances[j * stride + k - 1];
     const bool usable = normals[i].squaredNorm() > 0 && normals[j].squaredNorm() > 0;
-    return usable && (i < j || !listed_by_j) ? level(agree(i, j)) : kNoEdge;
+    if (!usable || (i >= j && listed_by_j)) return kNoEdge;
+    const float c = agreement(points[i], normals[i], points[j], normals[j], options.criterion);
+    return static_cast<std::uint16_t>(level(c) | (c < 0 ? kDisagree : 0));
   };
-  const auto disagree = [&](std::uint32_t i, std::uint32_t j) -> std::uint8_t { return agree(i, j) < 0; };
 
   // 1. Kruskal inside fixed blocks of consecutive (spatially sorted) points, in parallel and in cache: each point
   //    gets its block tree's root and its sign relative to that root; edges leaving the block are kept for step 2.
+  //    The agreements, the costly part, are evaluated in a nested parallel loop so that few blocks still use every
+  //    core.
   const std::size_t blocks = (n + kBlockPoints - 1) / kBlockPoints;
   std::vector<std::uint32_t> block_root(n);
   std::vector<std::uint8_t> block_flip(n);
   std::vector<std::vector<Edge>> crossing(blocks);
   tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
     const std::size_t first = b * kBlockPoints, last = std::min(n, first + kBlockPoints);
+    std::vector<std::uint16_t> slots((last - first) * k);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, 512), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i < r.end(); ++i)
+        for (std::size_t m = 0; m < k; ++m) slots[(i - first) * k + m] = edge_slot(i, m);
+    });
     std::vector<Edge> inside;
     for (std::size_t i = first; i < last; ++i) {
       for (std::size_t m = 0; m < k; ++m) {
-        const std::uint16_t l = edge_level(i, m);
-        if (l == kNoEdge) continue;
+        const std::uint16_t slot = slots[(i - first) * k + m];
+        if (slot == kNoEdge) continue;
         const std::uint32_t j = neighbourhoods.indices[i * stride + m];
-        const Edge e{static_cast<std::uint32_t>(i), j, l};
+        const Edge e{static_cast<std::uint32_t>(i), j, static_cast<std::uint16_t>(slot & ~kDisagree),
+                     static_cast<std::uint8_t>((slot & kDisagree) != 0)};
         (j >= first && j < last ? inside : crossing[b]).push_back(e);
       }
     }
     SignedUnionFind forest(last - first);
     const auto local = [&](std::uint32_t i) { return static_cast<std::uint32_t>(i - first); };
-    for (const Edge& e : sort_by_level(inside)) forest.join(local(e.from), local(e.to), disagree(e.from, e.to));
+    for (const Edge& e : sort_by_level(inside)) forest.join(local(e.from), local(e.to), e.disagree);
     for (std::size_t i = first; i < last; ++i) {
       const auto [root, flip] = forest.find(local(static_cast<std::uint32_t>(i)));
       block_root[i] = static_cast<std::uint32_t>(root + first);
@@ -183,8 +192,7 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
   }
   SignedUnionFind trees(n);
   for (const Edge& e : sort_by_level(between)) {
-    trees.join(block_root[e.from], block_root[e.to],
-               block_flip[e.from] ^ block_flip[e.to] ^ disagree(e.from, e.to));
+    trees.join(block_root[e.from], block_root[e.to], block_flip[e.from] ^ block_flip[e.to] ^ e.disagree);
   }
   report(0.8);
 

@@ -44,6 +44,10 @@ ShadingGrid splat(const ShadowInput& in, const ShadowOptions& o, const Vec3f& li
 
   const std::size_t n = in.positions.size();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
+    // One row of cells at a time: its ray parameters and disc tests in a loop the compiler vectorises, then the
+    // z-buffer updates of the cells inside the disc.
+    std::vector<float> row_s(static_cast<std::size_t>(g.w));
+    std::vector<std::int32_t> row_inside(static_cast<std::size_t>(g.w));
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const Vec3f& p = in.positions[i];
       const Vec3f& nrm = in.normals[i];
@@ -69,19 +73,27 @@ ShadingGrid splat(const ShadowInput& in, const ShadowOptions& o, const Vec3f& li
       const float n_right = nrm.dot(cam.right), n_up = nrm.dot(cam.up);
       const float ray_right = ray.dot(cam.right), ray_up = ray.dot(cam.up);
       const float r2 = radius * radius;
-      for (int y = y0; y <= y1; ++y)
+      const float cell = g.cell, u = uvd.x(), v = uvd.y(), depth = uvd.z();
+      float* const s_of = row_s.data();
+      std::int32_t* const inside = row_inside.data();
+      for (int y = y0; y <= y1; ++y) {
+        const float dv = ((static_cast<float>(y) + 0.5f) * cell - v) * upp;
         for (int x = x0; x <= x1; ++x) {
-          const float du = ((static_cast<float>(x) + 0.5f) * g.cell - uvd.x()) * upp;
-          const float dv = ((static_cast<float>(y) + 0.5f) * g.cell - uvd.y()) * upp;
+          const float du = ((static_cast<float>(x) + 0.5f) * cell - u) * upp;
           const float s = -(du * n_right - dv * n_up) / nv;
-          if (du * du + dv * dv + 2.f * s * (du * ray_right - dv * ray_up) + s * s > r2) continue;
-          const float d = std::max(uvd.z() + s * ray_depth, 0.f);
+          s_of[x - x0] = s;
+          inside[x - x0] = !(du * du + dv * dv + 2.f * s * (du * ray_right - dv * ray_up) + s * s > r2);
+        }
+        for (int x = x0; x <= x1; ++x) {
+          if (!inside[x - x0]) continue;
+          const float d = std::max(depth + s_of[x - x0] * ray_depth, 0.f);
           const std::uint64_t k = (static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(d)) << 32) | i;
           std::atomic<std::uint64_t>& slot = key[static_cast<std::size_t>(y) * g.w + x];
           std::uint64_t cur = slot.load(std::memory_order_relaxed);
           while (k < cur && !slot.compare_exchange_weak(cur, k, std::memory_order_relaxed)) {
           }
         }
+      }
     }
   });
 
