@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numeric>
 #include <random>
 
@@ -40,12 +39,11 @@ float distance_sq(const Vec3f& a, const Vec3f& b) {
   return result;
 }
 
-/// All (squared distance, index) pairs sorted lexicographically (only the first `sorted` in order, when given).
-std::vector<std::pair<float, std::uint32_t>> brute_force(const std::vector<Vec3f>& points, const Vec3f& q,
-                                                         std::size_t sorted = std::numeric_limits<std::size_t>::max()) {
+/// All (squared distance, index) pairs sorted lexicographically.
+std::vector<std::pair<float, std::uint32_t>> brute_force(const std::vector<Vec3f>& points, const Vec3f& q) {
   std::vector<std::pair<float, std::uint32_t>> all(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) all[i] = {distance_sq(q, points[i]), static_cast<std::uint32_t>(i)};
-  std::partial_sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(std::min(sorted, all.size())), all.end());
+  std::sort(all.begin(), all.end());
   return all;
 }
 
@@ -126,50 +124,6 @@ TEST(Neighbourhoods, SelfExcludedByIndexAmongDuplicates) {
   // Neighbours of duplicate 0 are the next duplicates in index order.
   EXPECT_EQ(nb.of(0)[0], 1u);
   EXPECT_EQ(nb.of(5)[0], 0u);
-}
-
-/// A cloud of ≥ 4096 points (the grid search's size) that takes each of its paths: a 64×64 lattice, whose equal
-/// distances test the index tie-break; a patch 20× denser; duplicates; sparse points scattered above the lattice;
-/// a far outlier. Spatially sorted unless `shuffled`.
-std::vector<Vec3f> uneven_cloud(bool shuffled) {
-  std::vector<Vec3f> points;
-  for (int x = 0; x < 64; ++x)
-    for (int y = 0; y < 64; ++y) points.emplace_back(0.1f * static_cast<float>(x), 0.1f * static_cast<float>(y), 0.f);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<float> u(0.f, 1.f);
-  for (int i = 0; i < 400; ++i) points.emplace_back(2.f + 0.1f * u(rng), 3.f + 0.1f * u(rng), 0.01f * u(rng));
-  for (int i = 0; i < 300; i += 3) points.push_back(points[static_cast<std::size_t>(i)]);
-  for (int i = 0; i < 60; ++i) points.emplace_back(6.4f * u(rng), 6.4f * u(rng), 1.f + 3.f * u(rng));
-  points.emplace_back(400.f, -300.f, 20.f);
-  if (shuffled) std::shuffle(points.begin(), points.end(), rng);
-  else points = [&] {
-    std::vector<Vec3f> sorted;
-    for (const std::uint32_t i : spatial_order(points)) sorted.push_back(points[i]);
-    return sorted;
-  }();
-  return points;
-}
-
-TEST(Neighbourhoods, ListsMatchBruteForceOnUnevenClouds) {
-  const std::vector<std::size_t> ks = {5, 16, 32, 40};  // 40: beyond the grid search, the kd-tree's lists
-  for (const bool shuffled : {false, true}) {
-    const std::vector<Vec3f> points = uneven_cloud(shuffled);
-    const KdTree tree(points);
-    std::vector<Neighbourhoods> lists;
-    for (const std::size_t k : ks) lists.push_back(compute_neighbourhoods(tree, points, {.k = k}));
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      auto truth = brute_force(points, points[i], ks.back() + 1);
-      // Point i itself (distance 0, possibly behind duplicates of smaller index) is not its own neighbour.
-      truth.erase(std::find(truth.begin(), truth.end(), std::pair{0.f, static_cast<std::uint32_t>(i)}));
-      for (const Neighbourhoods& nb : lists) {
-        ASSERT_EQ(nb.size(), points.size());
-        for (std::size_t m = 0; m < nb.k; ++m) {
-          ASSERT_EQ(nb.of(i)[m], truth[m].second) << "shuffled " << shuffled << " k " << nb.k << " point " << i;
-          ASSERT_EQ(nb.distances_of(i)[m], std::sqrt(truth[m].first));
-        }
-      }
-    }
-  }
 }
 
 TEST(Neighbourhoods, SmallCloudsShrinkK) {

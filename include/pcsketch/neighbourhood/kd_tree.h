@@ -9,9 +9,8 @@
 
 namespace pcsketch::neighbourhood {
 
-/// A kd-tree over `points`, which must outlive it and not change. Built once, by the first query (concurrent first
-/// queries wait for that one build); every const query is thread-safe (nanoflann's contract). Radii and distances
-/// are true distances, not squared.
+/// A kd-tree over `points`, which must outlive it and not change. Built once in the constructor; every const query
+/// is thread-safe (nanoflann's contract). Radii and distances are true distances, not squared.
 class KdTree {
  public:
   explicit KdTree(const std::vector<Vec3f>& points);

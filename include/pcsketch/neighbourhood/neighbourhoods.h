@@ -32,9 +32,6 @@ struct Neighbourhoods {
 
 /// k-NN of every point of the tree (`points` are the tree's points), in parallel; deterministic for any thread count.
 /// Ties are broken by index; each point itself is excluded by index, so its duplicates count as neighbours.
-/// For k ≤ 32 and ≥ 4096 points the lists come from a uniform grid (blocks of cells around each point, kept where
-/// they provably hold the k nearest), the kd-tree answering only for the rest: the same lists, ~3× faster on a
-/// spatially sorted cloud (reorder_spatially), and the kd-tree is often never built.
 /// @throws pcsketch::Error if the tree does not hold points.size() points
 Neighbourhoods compute_neighbourhoods(const KdTree& tree, const std::vector<Vec3f>& points,
                                       const NeighbourhoodOptions& options = {});
