@@ -167,9 +167,12 @@ class BodyReader {
   void skip(const Element& e) {
     const bool fixed = std::none_of(e.properties.begin(), e.properties.end(),
                                     [](const Property& p) { return p.count_type.has_value(); });
-    if (binary() && fixed) {  // sizes were checked against the file before
+    if (binary() && fixed) {
+      // check_counts() bounded each element by its smallest entries only; a list before this one may have eaten
+      // into the bytes it counted on, so check again.
       std::uint64_t stride = 0;
       for (const Property& p : e.properties) stride += ply_scalar_size(p.type);
+      if (e.count > remaining() / stride) truncated(e, e.properties.back());
       pos_ += e.count * stride;
       return;
     }

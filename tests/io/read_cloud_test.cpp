@@ -231,6 +231,16 @@ TEST(ReadCloud, HostileHeadersFromMemory) {
   const std::string count("\xff\xff\xff\xff", 4);
   EXPECT_NE(error_of([&] { read_mesh_from_memory(list_header + point + count, "l.ply"); }).find("truncated"),
             std::string::npos);
+  // A long list in an element before a fixed-size one: the header's size check assumed empty lists, so skipping
+  // the fixed-size element must not run past the end (the fuzzer's heap overflow).
+  const std::string list_first =
+      "ply\nformat binary_little_endian 1.0\nelement a 1\nproperty list uchar int l\nelement b 3\n"
+      "property float s\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+  const std::string long_list = "\x04" + std::string(16, '\0');
+  EXPECT_NE(error_of([&] {
+              read_point_cloud_from_memory(list_first + long_list + std::string(8, '\0'), "s.ply");
+            }).find("element \"b\": file ends in the middle"),
+            std::string::npos);
   const std::string ascii_list =
       "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
       "property float z\nelement face 1\nproperty list uint int vertex_indices\n"
