@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
 
 #include "differential/common.h"
 #include "neighbourhood/parallel_chunks.h"
@@ -13,6 +14,9 @@ namespace pcsketch::differential {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+/// Neighbours of the smaller fit that separates noise from shape misfit (the point itself makes 6 + 6 dof).
+constexpr std::size_t kInnerFit = 11;
 
 /// Principal curvatures at one point (our sign convention) and the residual of the fit.
 struct PointFit {
@@ -30,32 +34,19 @@ void tangent_frame(const Vec3d& n, Vec3d& u, Vec3d& v) {
   v = Vec3d(b, sign + n.y() * n.y() * a, -n.y());
 }
 
-/// Least-squares quadric height field over the point and `neighbours` in the tangent frame of `normal`; principal
-/// curvatures from the shape operator of the fitted graph at the origin.
-PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f& normal,
-                   const std::uint32_t* neighbours, std::size_t count) {
+/// Least-squares quadric height field over local[0..size) (the point and its first size − 1 neighbours in the
+/// tangent frame (u, v, n) of its normal; `spread` is Σ x² + y² over the neighbours); principal curvatures from the
+/// shape operator of the fitted graph at the origin, unless only the residual is wanted (`shape` false).
+PointFit fit_quadric(const Vec3d* local, std::size_t size, double spread, const Vec3d& n, const Vec3d& u,
+                     const Vec3d& v, bool shape) {
   PointFit fit;
-  const Vec3d n = normal.cast<double>();
-  if (!(n.squaredNorm() > 0.5)) return fit;  // no normal: no frame
-  Vec3d u, v;
-  tangent_frame(n, u, v);
-  const Vec3d origin = points[i].cast<double>();
-
-  thread_local std::vector<Vec3d> local;
-  local.resize(count + 1);
-  local[0] = Vec3d::Zero();
-  double spread = 0;
-  for (std::size_t m = 0; m < count; ++m) {
-    const Vec3d d = points[neighbours[m]].cast<double>() - origin;
-    local[m + 1] = Vec3d(d.dot(u), d.dot(v), d.dot(n));
-    spread += local[m + 1].head<2>().squaredNorm();
-  }
+  const std::size_t count = size - 1;
   // Tangent coordinates scaled to unit RMS radius: keeps the normal equations well conditioned at any model scale.
   const double scale = spread > 0 ? std::sqrt(static_cast<double>(count) / spread) : 1.0;
   // The normal equations need only the moments Σ x^a y^b (a + b ≤ 4) and Σ z x^a y^b (a + b ≤ 2).
   double x4 = 0, x3y = 0, x2y2 = 0, xy3 = 0, y4 = 0, x3 = 0, x2y = 0, xy2 = 0, y3 = 0, x2 = 0, xy = 0, y2 = 0, x1 = 0,
          y1 = 0, zx2 = 0, zxy = 0, zy2 = 0, zx = 0, zy = 0, z1 = 0;
-  for (const Vec3d& q : local) {
+  for (const Vec3d& q : std::span(local, size)) {
     const double x = q.x() * scale, y = q.y() * scale, z = q.z();
     const double xx = x * x, xy_ = x * y, yy = y * y;
     x4 += xx * xx, x3y += xx * xy_, x2y2 += xx * yy, xy3 += xy_ * yy, y4 += yy * yy;
@@ -63,7 +54,7 @@ PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f&
     x2 += xx, xy += xy_, y2 += yy, x1 += x, y1 += y;
     zx2 += z * xx, zxy += z * xy_, zy2 += z * yy, zx += z * x, zy += z * y, z1 += z;
   }
-  const double w0 = static_cast<double>(local.size());
+  const double w0 = static_cast<double>(size);
   using Vec6 = Eigen::Matrix<double, 6, 1>;
   Eigen::Matrix<double, 6, 6> normal_matrix;  // rows/columns: x², xy, y², x, y, 1
   normal_matrix << x4, x3y, x2y2, x3, x2y, x2,  //
@@ -84,9 +75,10 @@ PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f&
   };
 
   double squares = 0;
-  for (const Vec3d& q : local) squares += std::pow(q.z() - model(q), 2);
-  const double dof = local.size() > 6 ? static_cast<double>(local.size() - 6) : 1.0;
+  for (const Vec3d& q : std::span(local, size)) squares += std::pow(q.z() - model(q), 2);
+  const double dof = size > 6 ? static_cast<double>(size - 6) : 1.0;
   fit.residual = std::sqrt(squares / dof);
+  if (!shape) return fit;
 
   // Graph z = h(x, y): derivatives at the origin in model units.
   const double s2 = scale * scale;
@@ -116,6 +108,32 @@ PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f&
   return fit;
 }
 
+/// The quadric fit (fit_quadric) over point i and its first `count` neighbours; with `inner`, also the residual of
+/// the fit over its first kInnerFit ≤ count neighbours, from the same tangent-frame coordinates.
+PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f& normal,
+                   const std::uint32_t* neighbours, std::size_t count, double* inner) {
+  if (inner) *inner = 0;
+  const Vec3d n = normal.cast<double>();
+  if (!(n.squaredNorm() > 0.5)) return {};  // no normal: no frame
+  Vec3d u, v;
+  tangent_frame(n, u, v);
+  const Vec3d origin = points[i].cast<double>();
+
+  thread_local std::vector<Vec3d> local;
+  local.resize(count + 1);
+  local[0] = Vec3d::Zero();
+  double spread = 0, inner_spread = 0;
+  for (std::size_t m = 0; m < count; ++m) {
+    const Vec3d d = points[neighbours[m]].cast<double>() - origin;
+    local[m + 1] = Vec3d(d.dot(u), d.dot(v), d.dot(n));
+    spread += local[m + 1].head<2>().squaredNorm();
+    if (m + 1 == kInnerFit) inner_spread = spread;
+  }
+  if (inner && count >= kInnerFit)
+    *inner = fit_quadric(local.data(), kInnerFit + 1, inner_spread, n, u, v, false).residual;
+  return fit_quadric(local.data(), count + 1, spread, n, u, v, true);
+}
+
 /// Median of `values` (reordered).
 double median(std::vector<double>& values) {
   if (values.empty()) return 0;
@@ -135,9 +153,6 @@ double density(const neighbourhood::Neighbourhoods& neighbourhoods) {
   }
   return median(rho);
 }
-
-/// Neighbours of the smaller fit that separates noise from shape misfit (the point itself makes 6 + 6 dof).
-constexpr std::size_t kInnerFit = 11;
 
 /// Noise σ̂ from the first-pass residuals. A residual mixes noise, the same at any fit size, with the misfit of
 /// the shape beyond a quadric (cubic terms ~ r³, so its square grows as k³ at fixed density). The median squared
@@ -199,9 +214,9 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
           nb = found.data();
           count = found.size();
         }
-        const PointFit fit = fit_point(points, i, normals[i], nb, count);
-        if (!inner_residual.empty() && i % stride == 0)
-          inner_residual[i / stride] = fit_point(points, i, normals[i], nb, kInnerFit).residual;
+        const bool sampled = !inner_residual.empty() && i % stride == 0;
+        const PointFit fit =
+            fit_point(points, i, normals[i], nb, count, sampled ? &inner_residual[i / stride] : nullptr);
         result.k1[i] = fit.k1;
         result.k2[i] = fit.k2;
         result.dir1[i] = fit.dir1;

@@ -1,6 +1,7 @@
 #include "pcsketch/neighbourhood/kd_tree.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <nanoflann.hpp>
@@ -29,8 +30,14 @@ using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<f
 /// with incrementally rounded box distances, so a point at exactly the bound could otherwise be skipped.
 float widened(float dist_sq) { return dist_sq * (1.f + 1e-6f) + std::numeric_limits<float>::denorm_min(); }
 
-/// (squared distance, index), ordered lexicographically: ties come out in index order whatever the traversal order.
-using Candidate = std::pair<float, std::uint32_t>;
+/// (squared distance, index) packed so that one unsigned compare orders them lexicographically (squared distances
+/// are never negative, and non-negative floats order like their bits; NaN distances are never offered, nanoflann
+/// testing dist < worstDist() first): ties come out in index order whatever the traversal order.
+using Candidate = std::uint64_t;
+Candidate candidate(float dist_sq, std::uint32_t index) {
+  return static_cast<Candidate>(std::bit_cast<std::uint32_t>(dist_sq)) << 32 | index;
+}
+float squared_distance(Candidate c) { return std::bit_cast<float>(static_cast<std::uint32_t>(c >> 32)); }
 
 /// The k smallest candidates, kept sorted by insertion (fast for small k). worstDist() is widened so that a
 /// candidate tied with the current worst is still offered and may win on its index.
@@ -38,15 +45,14 @@ class SortedKnn {
  public:
   SortedKnn(std::size_t capacity, Candidate* out) : capacity_(capacity), out_(out) {}
   bool full() const { return count_ == capacity_; }
-  float worstDist() const {
-    return full() ? widened(out_[capacity_ - 1].first) : std::numeric_limits<float>::infinity();
-  }
+  float worstDist() const { return worst_; }
   bool addPoint(float dist, std::uint32_t index) {
-    const Candidate c{dist, index};
-    if (full() && !(c < out_[capacity_ - 1])) return true;
+    const Candidate c = candidate(dist, index);
+    if (full() && c >= out_[capacity_ - 1]) return true;
     std::size_t m = count_ < capacity_ ? count_++ : capacity_ - 1;
     for (; m > 0 && c < out_[m - 1]; --m) out_[m] = out_[m - 1];
     out_[m] = c;
+    if (full()) worst_ = widened(squared_distance(out_[capacity_ - 1]));
     return true;
   }
   void finish() {}
@@ -55,6 +61,7 @@ class SortedKnn {
   std::size_t capacity_;
   std::size_t count_ = 0;
   Candidate* out_;
+  float worst_ = std::numeric_limits<float>::infinity();
 };
 
 /// The k smallest candidates in a max-heap, sorted at the end (for large k, where insertion is O(k)).
@@ -62,22 +69,25 @@ class HeapKnn {
  public:
   HeapKnn(std::size_t capacity, Candidate* out) : capacity_(capacity), out_(out) {}
   bool full() const { return count_ == capacity_; }
-  float worstDist() const { return full() ? widened(out_[0].first) : std::numeric_limits<float>::infinity(); }
+  float worstDist() const { return worst_; }
   bool addPoint(float dist, std::uint32_t index) {
-    const Candidate c{dist, index};
+    const Candidate c = candidate(dist, index);
     if (!full()) {
       out_[count_++] = c;
       std::push_heap(out_, out_ + count_);
     } else if (c < out_[0]) {
       sift_down(c);
+    } else {
+      return true;
     }
+    if (full()) worst_ = widened(squared_distance(out_[0]));
     return true;
   }
   void finish() { std::sort(out_, out_ + count_); }
 
  private:
   /// Replaces the root by `c` and restores the max-heap: one pass down instead of pop_heap + push_heap.
-  void sift_down(const Candidate& c) {
+  void sift_down(Candidate c) {
     std::size_t m = 0;
     for (std::size_t child = 1; child < count_; child = 2 * m + 1) {
       if (child + 1 < count_ && out_[child] < out_[child + 1]) ++child;
@@ -91,6 +101,7 @@ class HeapKnn {
   std::size_t capacity_;
   std::size_t count_ = 0;
   Candidate* out_;
+  float worst_ = std::numeric_limits<float>::infinity();
 };
 
 /// Every point at true distance ≤ radius (inclusive, unlike nanoflann's RadiusResultSet; compared after the square
@@ -154,8 +165,8 @@ void KdTree::knn(const Vec3f& query, std::size_t k, std::vector<std::uint32_t>& 
     search(HeapKnn(k, found.data()));
   }
   for (std::size_t m = 0; m < k; ++m) {
-    distances[m] = std::sqrt(found[m].first);
-    indices[m] = found[m].second;
+    distances[m] = std::sqrt(squared_distance(found[m]));
+    indices[m] = static_cast<std::uint32_t>(found[m]);
   }
 }
 

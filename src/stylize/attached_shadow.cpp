@@ -40,7 +40,15 @@ ShadingGrid splat(const ShadowInput& in, const ShadowOptions& o, const Vec3f& li
   g.h = std::max(1, static_cast<int>(std::ceil(static_cast<float>(cam.height) / g.cell)));
   const std::size_t cells = static_cast<std::size_t>(g.w) * static_cast<std::size_t>(g.h);
   std::vector<std::atomic<std::uint64_t>> key(cells);
-  for (auto& k : key) k.store(kEmpty, std::memory_order_relaxed);
+  // Cell loops run in parallel over rows of cells: each writes only its own cells.
+  const auto each_row = [&](const auto& body) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, g.h), [&](const tbb::blocked_range<int>& r) {
+      for (int y = r.begin(); y != r.end(); ++y) body(y);
+    });
+  };
+  each_row([&](int y) {
+    for (int x = 0; x < g.w; ++x) key[static_cast<std::size_t>(y) * g.w + x].store(kEmpty, std::memory_order_relaxed);
+  });
 
   const std::size_t n = in.positions.size();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -100,36 +108,37 @@ ShadingGrid splat(const ShadowInput& in, const ShadowOptions& o, const Vec3f& li
   g.covered.assign(cells, 0);
   g.depth.assign(cells, 0.f);
   std::vector<float> raw(cells, 0.f);
-  for (std::size_t c = 0; c < cells; ++c) {
-    const std::uint64_t k = key[c].load(std::memory_order_relaxed);
-    if (k == kEmpty) continue;
-    const std::uint32_t i = static_cast<std::uint32_t>(k & 0xffffffffu);
-    // Surfaces seen at a grazing angle are squeezed into thin strips where hatching reads as specks.
-    if (-in.normals[i].dot(cam.ray_direction(in.positions[i])) < o.attached_min_facing) continue;
-    g.covered[c] = 1;
-    g.depth[c] = std::bit_cast<float>(static_cast<std::uint32_t>(k >> 32));
-    raw[c] = in.normals[i].dot(light);
-  }
+  each_row([&](int y) {
+    for (std::size_t c = static_cast<std::size_t>(y) * g.w; c < static_cast<std::size_t>(y + 1) * g.w; ++c) {
+      const std::uint64_t k = key[c].load(std::memory_order_relaxed);
+      if (k == kEmpty) continue;
+      const std::uint32_t i = static_cast<std::uint32_t>(k & 0xffffffffu);
+      // Surfaces seen at a grazing angle are squeezed into thin strips where hatching reads as specks.
+      if (-in.normals[i].dot(cam.ray_direction(in.positions[i])) < o.attached_min_facing) continue;
+      g.covered[c] = 1;
+      g.depth[c] = std::bit_cast<float>(static_cast<std::uint32_t>(k >> 32));
+      raw[c] = in.normals[i].dot(light);
+    }
+  });
   // Normal noise makes the terminator ragged; a 3×3 mean over covered cells of similar depth smooths it.
   const float jump = o.depth_jump_factor * in.spacing;
   g.shade.assign(cells, 0.f);
-  tbb::parallel_for(tbb::blocked_range<int>(0, g.h), [&](const tbb::blocked_range<int>& r) {
-    for (int y = r.begin(); y != r.end(); ++y)
-      for (int x = 0; x < g.w; ++x) {
-        const std::size_t c = static_cast<std::size_t>(y) * g.w + x;
-        if (!g.covered[c]) continue;
-        float sum = 0.f;
-        int count = 0;
-        for (int yy = std::max(0, y - 1); yy <= std::min(g.h - 1, y + 1); ++yy)
-          for (int xx = std::max(0, x - 1); xx <= std::min(g.w - 1, x + 1); ++xx) {
-            const std::size_t q = static_cast<std::size_t>(yy) * g.w + xx;
-            if (g.covered[q] && std::abs(g.depth[q] - g.depth[c]) <= jump) {
-              sum += raw[q];
-              ++count;
-            }
+  each_row([&](int y) {
+    for (int x = 0; x < g.w; ++x) {
+      const std::size_t c = static_cast<std::size_t>(y) * g.w + x;
+      if (!g.covered[c]) continue;
+      float sum = 0.f;
+      int count = 0;
+      for (int yy = std::max(0, y - 1); yy <= std::min(g.h - 1, y + 1); ++yy)
+        for (int xx = std::max(0, x - 1); xx <= std::min(g.w - 1, x + 1); ++xx) {
+          const std::size_t q = static_cast<std::size_t>(yy) * g.w + xx;
+          if (g.covered[q] && std::abs(g.depth[q] - g.depth[c]) <= jump) {
+            sum += raw[q];
+            ++count;
           }
-        g.shade[c] = sum / static_cast<float>(count);
-      }
+        }
+      g.shade[c] = sum / static_cast<float>(count);
+    }
   });
   return g;
 }
