@@ -165,6 +165,7 @@ class BodyReader {
 
   /// Skips `e` entirely.
   void skip(const Element& e) {
+    if (e.count == 0) return;  // may have no properties at all
     const bool fixed = std::none_of(e.properties.begin(), e.properties.end(),
                                     [](const Property& p) { return p.count_type.has_value(); });
     if (binary() && fixed) {

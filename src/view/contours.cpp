@@ -317,9 +317,9 @@ std::vector<float> spacing_units(const neighbourhood::Neighbourhoods& neighbourh
                                  bool adaptive) {
   if (!adaptive || neighbourhoods.size() != n || neighbourhoods.k == 0) return std::vector<float>(n, h);
   const std::size_t k = neighbourhoods.k;
-  std::vector<float> far(n), sorted(n);
+  std::vector<float> far(n);
   for (std::size_t i = 0; i < n; ++i) far[i] = neighbourhoods.distances_of(i)[k - 1];
-  sorted = far;
+  std::vector<float> sorted = far;
   const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(n / 2);
   std::nth_element(sorted.begin(), mid, sorted.end());
   if (!(*mid > 0)) return std::vector<float>(n, h);

@@ -241,6 +241,11 @@ TEST(ReadCloud, HostileHeadersFromMemory) {
               read_point_cloud_from_memory(list_first + long_list + std::string(8, '\0'), "s.ply");
             }).find("element \"b\": file ends in the middle"),
             std::string::npos);
+  // An empty element without properties before the vertices is legal and skipped.
+  const std::string empty_first =
+      "ply\nformat binary_little_endian 1.0\nelement e 0\nelement vertex 1\nproperty float x\nproperty float y\n"
+      "property float z\nend_header\n";
+  EXPECT_EQ(read_point_cloud_from_memory(empty_first + point, "e.ply").cloud.size(), 1u);
   const std::string ascii_list =
       "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
       "property float z\nelement face 1\nproperty list uint int vertex_indices\n"
