@@ -17,8 +17,7 @@
 
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/pipeline.h"
-#include "pcsketch/render/png.h"
-#include "pcsketch/render/svg.h"
+#include "pcsketch/render/write.h"
 #include "support/bench_support.h"
 #include "support/mesh_ground_truth.h"
 
@@ -69,8 +68,8 @@ std::string measure(const Job& job) {
   DrawResult result = draw_view(prepared, options.camera, options);
   clock.restart();
   const std::filesystem::path dir = std::filesystem::temp_directory_path();
-  render::write_svg(result.drawing, dir / "pcsketch_bench_pipeline.svg", options.render);
-  render::write_png(result.drawing, dir / "pcsketch_bench_pipeline.png", options.render);
+  render::write_drawings(result.drawing, {dir / "pcsketch_bench_pipeline.svg", dir / "pcsketch_bench_pipeline.png"},
+                         options.render);
   result.timings.drawing += clock.restart();
   timings += result.timings;
   const std::size_t peak = peak_rss_bytes();

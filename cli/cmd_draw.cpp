@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <tbb/parallel_for_each.h>
 #include <vector>
 
 #include "commands.h"
@@ -51,10 +52,6 @@ CLI::Option* add_vec3(CLI::App* cmd, const std::string& name, const std::string&
       name, [flag, set](const std::string& s) { set(parse_vec3(flag, s)); }, help);
 }
 
-void write_all(const Drawing& drawing, const std::vector<std::string>& paths, const render::RenderOptions& render) {
-  for (const std::string& path : paths) render::write_drawing(drawing, path, render);
-}
-
 void print_timings(const Timings& t, std::size_t points) {
   const auto paper = t.table_rows();
   std::printf("%-34s %10s  %s\n", "stage", "seconds", "(paper Table 2 row)");
@@ -89,7 +86,7 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
     DrawResult result = draw_view(prepared, options.camera, options);
     print_warnings(global, result.warnings);
     start = Clock::now();
-    write_all(result.drawing, args.outputs, options.render);
+    render::write_drawings(result.drawing, {args.outputs.begin(), args.outputs.end()}, options.render);
     result.timings.drawing += seconds_since(start);
     timings += result.timings;
   }
@@ -104,9 +101,12 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
     }
     if (extensions.empty()) extensions.push_back(".png");
     // Their warnings are the ones draw_view printed for the same camera.
-    for (const auto& [stem, drawing] : stage_drawings(prepared, options.camera, options).stages)
-      for (const std::string& ext : extensions)
-        render::write_drawing(drawing, fs::path(args.stages) / (stem + ext), options.render);
+    const auto stages = stage_drawings(prepared, options.camera, options).stages;
+    tbb::parallel_for_each(stages.begin(), stages.end(), [&](const auto& stage) {
+      std::vector<fs::path> paths;
+      for (const std::string& ext : extensions) paths.push_back(fs::path(args.stages) / (stage.first + ext));
+      render::write_drawings(stage.second, paths, options.render);
+    });
   }
   if (args.timings) print_timings(timings, prepared.cloud.size());
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <tbb/parallel_for_each.h>
 
 #include "pcsketch/core/error.h"
 #include "pcsketch/render/json.h"
@@ -31,6 +32,12 @@ void write_drawing(const Drawing& drawing, const std::filesystem::path& path, co
   else if (ext == ".png") write_png(drawing, path, options);
   else if (ext == ".json") write_json(drawing, path);
   else throw Error(path.string() + ": output: unknown format (use .svg, .pdf, .png or .json)");
+}
+
+void write_drawings(const Drawing& drawing, const std::vector<std::filesystem::path>& paths,
+                    const RenderOptions& options) {
+  tbb::parallel_for_each(paths.begin(), paths.end(),
+                         [&](const std::filesystem::path& path) { write_drawing(drawing, path, options); });
 }
 
 }  // namespace pcsketch::render

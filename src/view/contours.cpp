@@ -401,16 +401,26 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
     std::vector<Vec2f> outward(valid.size(), Vec2f::Zero());
     const float threshold = o.gap_threshold_deg * kDegToRad;
     const bool octant_shortcut = o.gap_threshold_deg >= 90.f;
-    // Pre-filter: a point whose own 3D neighbours, projected, lie in all eight 45° sectors around it is inside the
-    // projection (nothing projects beyond the outline, so an outline point has empty sectors) — true of most points
-    // facing the viewer, and it costs no 2D query.
+    // Pre-filter: a point whose own 3D neighbours, projected, leave no gap over the threshold (and no empty
+    // quadrant) is inside the projection: nothing projects beyond the outline, so an outline point's neighbours
+    // leave a gap of about 180°. True of most points; it costs no 2D query. All eight 45° sectors filled settles
+    // it without angles; irregular or foreshortened neighbourhoods (two thirds of the bunny's vertices) need the gap.
     const bool use_3d_neighbours = octant_shortcut && neighbourhoods.size() == n && neighbourhoods.k > 0;
-    auto surrounded = [&](std::uint32_t i) {
+    auto surrounded = [&](std::uint32_t i, std::vector<Vec2f>& dirs, std::vector<float>& angles) {
       const Vec2f p = cp.projected[i].head<2>();
+      const float min_d2 = 1e-8f * cp.spacing_px[i] * cp.spacing_px[i];
       unsigned octants = 0;
-      for (const std::uint32_t j : neighbourhoods.of(i))
-        if (cp.spacing_px[j] > 0) octants |= octant_bit(cp.projected[j].head<2>() - p);
-      return octants == 0xFFu;
+      dirs.clear();
+      for (const std::uint32_t j : neighbourhoods.of(i)) {
+        const Vec2f c = cp.projected[j].head<2>() - p;
+        if (cp.spacing_px[j] > 0 && c.squaredNorm() > min_d2) {
+          octants |= octant_bit(c);
+          dirs.push_back(c);
+        }
+      }
+      if (octants == 0xFFu) return true;
+      if (((octants | (octants >> 4)) & 0xFu) != 0xFu) return false;
+      return largest_gap(angles, dirs).first <= threshold;
     };
     // Queries run in the grid's cell order so that neighbouring queries scan the same cells (cache).
     const std::vector<std::uint32_t>& grid_order = grid.order();
@@ -421,7 +431,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       for (std::size_t g = range.begin(); g != range.end(); ++g) {
         const std::size_t v = grid_order[g];
         const float r = o.radius_factor * cp.spacing_px[valid[v]];
-        if (use_3d_neighbours && surrounded(valid[v])) continue;
+        if (use_3d_neighbours && surrounded(valid[v], dirs, angles)) continue;
         near.clear();
         // Points within r filling all eight 45° sectors: no gap reaches 90°, the scan stops (interior).
         unsigned filled = 0;

@@ -2,6 +2,7 @@
 // One entry point for every output format, chosen by the file extension.
 
 #include <filesystem>
+#include <vector>
 
 #include "pcsketch/core/drawing.h"
 #include "pcsketch/render/options.h"
@@ -11,6 +12,12 @@ namespace pcsketch::render {
 /// Writes `drawing` to `path` as SVG, PDF, PNG or JSON according to its extension (.svg, .pdf, .png, .json,
 /// case-insensitive). @throws pcsketch::Error for another extension or a write failure.
 void write_drawing(const Drawing& drawing, const std::filesystem::path& path, const RenderOptions& options = {});
+
+/// write_drawing() for every path, the files in parallel (each has its own cairo surface; the bunny's SVG and PNG
+/// take about as long each). @throws pcsketch::Error as write_drawing(), the first failure if several fail; the other
+/// files are still written.
+void write_drawings(const Drawing& drawing, const std::vector<std::filesystem::path>& paths,
+                    const RenderOptions& options = {});
 
 /// Whether write_drawing() knows the extension of `path`.
 bool is_supported_output(const std::filesystem::path& path);
