@@ -39,6 +39,30 @@ std::pair<float, Vec2f> largest_gap(std::vector<float>& angles, std::span<const 
   return {best, Vec2f(std::cos(mid), std::sin(mid))};
 }
 
+/// Increases with the angle of d from +x over [0, 4) as atan2 does over [0, 2π), without the trigonometry.
+float pseudo_angle(const Vec2f& d) {
+  const float p = d.x() / (std::abs(d.x()) + std::abs(d.y()));
+  return d.y() < 0 ? 3.f + p : 1.f - p;
+}
+
+/// largest_gap(dirs).first > threshold, without arctangents: the boundary test asks it of every point and most
+/// answers are no. `dirs` (none zero) is reordered by angle.
+bool gap_exceeds(std::vector<Vec2f>& dirs, float threshold) {
+  if (dirs.size() < 2) return threshold < 2 * kPi;
+  std::sort(dirs.begin(), dirs.end(), [](const Vec2f& a, const Vec2f& b) { return pseudo_angle(a) < pseudo_angle(b); });
+  const float cos_t = std::cos(threshold);
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    const Vec2f& a = dirs[i];
+    const Vec2f& b = dirs[(i + 1) % dirs.size()];
+    const float cross = a.x() * b.y() - a.y() * b.x();
+    const float dot_bound = cos_t * a.norm() * b.norm();
+    // The counter-clockwise angle from a to b is over 180° where cross < 0; its cosine falls over [0°, 180°] and
+    // rises over [180°, 360°].
+    if (threshold < kPi ? (cross < 0 || a.dot(b) < dot_bound) : (cross < 0 && a.dot(b) > dot_bound)) return true;
+  }
+  return false;
+}
+
 /// Bit of the 45° sector holding direction c: quadrant q (by signs) is bit q, or bit q + 4 past its diagonal.
 unsigned octant_bit(const Vec2f& c) {
   return 1u << ((c.x() >= 0 ? 0 : 1) + (c.y() >= 0 ? 0 : 2) + (std::abs(c.x()) >= std::abs(c.y()) ? 0 : 4));
@@ -406,7 +430,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
     // leave a gap of about 180°. True of most points; it costs no 2D query. All eight 45° sectors filled settles
     // it without angles; irregular or foreshortened neighbourhoods (two thirds of the bunny's vertices) need the gap.
     const bool use_3d_neighbours = octant_shortcut && neighbourhoods.size() == n && neighbourhoods.k > 0;
-    auto surrounded = [&](std::uint32_t i, std::vector<Vec2f>& dirs, std::vector<float>& angles) {
+    auto surrounded = [&](std::uint32_t i, std::vector<Vec2f>& dirs) {
       const Vec2f p = cp.projected[i].head<2>();
       const float min_d2 = 1e-8f * cp.spacing_px[i] * cp.spacing_px[i];
       unsigned octants = 0;
@@ -420,7 +444,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       }
       if (octants == 0xFFu) return true;
       if (((octants | (octants >> 4)) & 0xFu) != 0xFu) return false;
-      return largest_gap(angles, dirs).first <= threshold;
+      return !gap_exceeds(dirs, threshold);
     };
     // Queries run in the grid's cell order so that neighbouring queries scan the same cells (cache).
     const std::vector<std::uint32_t>& grid_order = grid.order();
@@ -431,7 +455,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       for (std::size_t g = range.begin(); g != range.end(); ++g) {
         const std::size_t v = grid_order[g];
         const float r = o.radius_factor * cp.spacing_px[valid[v]];
-        if (use_3d_neighbours && surrounded(valid[v], dirs, angles)) continue;
+        if (use_3d_neighbours && surrounded(valid[v], dirs)) continue;
         near.clear();
         // Points within r filling all eight 45° sectors: no gap reaches 90°, the scan stops (interior).
         unsigned filled = 0;
@@ -453,10 +477,10 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
           dirs.push_back(c);
           octants |= octant_bit(c);
         }
-        const auto [gap, bisector] = largest_gap(angles, dirs);
         // Quadrant q holds octants q and q + 4.
         const bool empty_quadrant = ((octants | (octants >> 4)) & 0xFu) != 0xFu;
-        if (!(gap > threshold || (o.quadrant_test && empty_quadrant))) continue;
+        if (!((o.quadrant_test && empty_quadrant) || gap_exceeds(dirs, threshold))) continue;
+        const Vec2f bisector = largest_gap(angles, dirs).second;
         // Confirmation: outside a true outline the empty region goes on, while a sampling hole inside the outline
         // (random sampling leaves some of about r) is closed beyond it.
         bool confirmed = true;
