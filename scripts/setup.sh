@@ -8,7 +8,7 @@ export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -q
 $SUDO apt-get install -y -q --no-install-recommends \
   build-essential g++ cmake ninja-build pkg-config git ca-certificates \
-  libeigen3-dev libnanoflann-dev libtbb-dev libcli11-dev libcairo2-dev libembree-dev nlohmann-json3-dev \
+  libeigen3-dev libnanoflann-dev libtbb-dev libcli11-dev libcairo2-dev libpng-dev libembree-dev nlohmann-json3-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   clang libclang-rt-14-dev libxml2-utils
 cmake --preset release
