@@ -203,6 +203,9 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber)
       ->group(view_group);
+  cmd->add_flag("!--no-local-offset", o.view.visibility.offset_from_local_spacing,
+                "Self offset in units of h everywhere, not of the source point's disc where the cloud is sparser")
+      ->group(view_group);
   cmd->add_flag("!--no-visibility-lift", o.view.visibility.lift_to_source_plane,
                 "Cast visibility rays from the line vertices themselves (the paper's), not lifted to the tangent "
                 "plane of their source points")

@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -35,19 +36,25 @@ bool sees(const SurfaceScene& scene, const Camera& camera, const Vec3f& p, float
   return true;
 }
 
-/// Where each vertex of `line` casts its ray from: the vertex, lifted to its source point's tangent plane when it
-/// lies below it (VisibilityOptions::lift_to_source_plane).
-std::vector<Vec3f> ray_origins(const Polyline& line, const SurfaceScene& scene, bool lift) {
-  std::vector<Vec3f> origins = line.points;
-  if (!lift || line.point_index.size() != line.points.size()) return origins;
-  for (std::size_t i = 0; i < origins.size(); ++i) {
+/// Where each vertex of `line` casts its ray from, and its length unit (h, or for a contour its source disc's radius
+/// where that is larger; VisibilityOptions::offset_from_local_spacing): the vertex, lifted to its source point's tangent plane
+/// when it lies below it (VisibilityOptions::lift_to_source_plane).
+struct RayOrigins {
+  std::vector<Vec3f> points;
+  std::vector<float> unit;
+};
+RayOrigins ray_origins(const Polyline& line, const SurfaceScene& scene, float spacing, const VisibilityOptions& o) {
+  RayOrigins out{line.points, std::vector<float>(line.points.size(), spacing)};
+  if (line.point_index.size() != line.points.size()) return out;
+  for (std::size_t i = 0; i < out.points.size(); ++i) {
     if (line.point_index[i] >= scene.size()) continue;
     const SurfaceDisc disc = scene.disc(line.point_index[i]);
     if (!(disc.radius > 0)) continue;
-    const float below = (disc.centre - origins[i]).dot(disc.normal);
-    if (below > 0) origins[i] += below * disc.normal;
+    if (o.offset_from_local_spacing && line.kind == LineKind::Contour) out.unit[i] = std::max(spacing, disc.radius);
+    const float below = (disc.centre - out.points[i]).dot(disc.normal);
+    if (o.lift_to_source_plane && below > 0) out.points[i] += below * disc.normal;
   }
-  return origins;
+  return out;
 }
 
 /// Majority vote over a centred window (wrapping on closed lines, shrinking at open ends).
@@ -107,6 +114,7 @@ void build_runs(ViewLine& vl, const Camera& camera) {
 
 nlohmann::json VisibilityOptions::to_json() const {
   return {{"self_offset_factor", self_offset_factor},
+          {"offset_from_local_spacing", offset_from_local_spacing},
           {"grazing_cos", grazing_cos},
           {"grazing_range_factor", grazing_range_factor},
           {"lift_to_source_plane", lift_to_source_plane},
@@ -130,8 +138,6 @@ std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const 
                                       const Camera& camera, float spacing, const VisibilityOptions& o) {
   if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("visibility: the mean spacing h must be positive");
   if (o.smoothing_window % 2 == 0) throw Error("visibility: the smoothing window must be odd");
-  const float offset = o.self_offset_factor * spacing;
-  const float grazing_range = o.grazing_range_factor * spacing;
   std::vector<ViewLine> out(lines.size());
   // Lines vary from a handful to thousands of vertices; a grain of one line keeps both cores busy.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
@@ -141,10 +147,13 @@ std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const 
       const std::size_t n = vl.line.points.size();
       vl.projected.resize(n);
       std::vector<std::uint8_t> raw(n);
-      const std::vector<Vec3f> origins = ray_origins(vl.line, scene, o.lift_to_source_plane);
+      const RayOrigins origins = ray_origins(vl.line, scene, spacing, o);
+      const auto seen_from = [&](const Vec3f& p, float unit) {
+        return sees(scene, camera, p, o.self_offset_factor * unit, o.grazing_range_factor * spacing, o);
+      };
       for (std::size_t i = 0; i < n; ++i) {
         vl.projected[i] = camera.project(vl.line.points[i]);
-        raw[i] = sees(scene, camera, origins[i], offset, grazing_range, o) ? 1 : 0;
+        raw[i] = seen_from(origins.points[i], origins.unit[i]) ? 1 : 0;
       }
       vl.visible = smooth_flags(raw, o.smoothing_window, vl.line.closed);
       const std::size_t segments = n == 0 ? 0 : (vl.line.closed && n > 2 ? n : n - 1);
@@ -154,10 +163,11 @@ std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const 
         if (vl.visible[s] == vl.visible[b]) continue;
         // Bisect for the change point (between the ray origins); the end with the smoothed flag of `s` is kept at lo.
         float lo = 0.f, hi = 1.f;
-        const Vec3f pa = origins[s], pb = origins[b];
+        const Vec3f pa = origins.points[s], pb = origins.points[b];
+        const float ua = origins.unit[s], ub = origins.unit[b];
         for (int it = 0; it < o.transition_refinement; ++it) {
           const float mid = 0.5f * (lo + hi);
-          const bool v = sees(scene, camera, pa + mid * (pb - pa), offset, grazing_range, o);
+          const bool v = seen_from(pa + mid * (pb - pa), ua + mid * (ub - ua));
           (v == (vl.visible[s] != 0) ? lo : hi) = mid;
         }
         vl.split[s] = 0.5f * (lo + hi);

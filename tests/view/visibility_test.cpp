@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <tuple>
 
 #include "pcsketch/core/error.h"
 #include "pcsketch/differential/normals.h"
@@ -172,6 +173,41 @@ TEST(Visibility, NoisySheetSeenAtAGrazingAngleDoesNotHideItself) {
   const ViewResult view = plane.view({.direction = Vec3d(0, 1, -0.18)}, lines);
   for (std::size_t l = view.contour_count; l < view.lines.size(); ++l)
     EXPECT_GT(visible_fraction(view.lines[l]), 0.95f);
+}
+
+TEST(Visibility, RimOfASparsePartIsSeenPastItsOwnLargeDiscs) {
+  // A sphere seen along +z: 15,000 points on its front cap (z < −0.5) and 450 on the rest, so h is set by the cap
+  // (≈ 0.01) while the discs at the rim (z = 0) have radii ≈ 0.2. The rim's rays leave tangentially and cross the
+  // discs of its sparse neighbours in front, at about half the neighbour's angle from the rim (up to ~0.1): past 3h.
+  PointCloud cloud;
+  for (const auto& [n, seed, front] : {std::tuple{60000, 1u, true}, std::tuple{600, 2u, false}}) {
+    const PointCloud s = test::sphere(1.f, {.n = static_cast<std::size_t>(n), .seed = seed});
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if ((s.positions[i].z() < -0.5f) == front) {
+        cloud.positions.push_back(s.positions[i]);
+        cloud.normals.push_back(s.normals[i]);
+      }
+  }
+  const Analysed sphere(std::move(cloud));
+  Polyline rim;
+  rim.kind = LineKind::Contour;
+  rim.closed = true;
+  const neighbourhood::KdTree tree(sphere.cloud.positions);
+  std::vector<std::uint32_t> nearest;
+  std::vector<float> distance;
+  for (int i = 0; i < 360; ++i) {
+    const float a = static_cast<float>(i) * 3.14159265f / 180.f;
+    rim.points.emplace_back(std::cos(a), std::sin(a), 0.f);
+    tree.knn(rim.points.back(), 1, nearest, distance);
+    rim.point_index.push_back(nearest[0]);
+  }
+  const std::vector<Polyline> lines{rim};
+  const ViewResult local = sphere.view({.direction = Vec3d(0, 0, 1)}, lines);
+  EXPECT_GT(visible_fraction(local.lines.back()), 0.95f);  // measured 0.989
+  // Offsets in units of h hide most of it (measured 0.39 seen).
+  ViewOptions global;
+  global.visibility.offset_from_local_spacing = false;
+  EXPECT_LT(visible_fraction(sphere.view({.direction = Vec3d(0, 0, 1)}, lines, global).lines.back()), 0.8f);
 }
 
 TEST(Visibility, RunsSplitWhereVisibilityChanges) {

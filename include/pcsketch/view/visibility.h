@@ -23,6 +23,14 @@ struct VisibilityOptions {
   /// parts (an ear, a sheet thinner than 3h) do not hide themselves. Surfaces nearer than that in front of a line
   /// are missed: the price of the rule.
   float self_offset_factor = 3.0f;
+  /// Contour vertices start their rays past their source point's disc radius times the factor where that radius
+  /// (the 4th-neighbour distance, about 2h on a uniform sampling, more in the sparse parts of an uneven cloud) is
+  /// larger than h: a rim sample's ray leaves tangentially and crosses its neighbours' discs up to about a disc
+  /// radius away, facing the viewer enough to escape the grazing rule. Contour precision / recall, 7 views: camel
+  /// vertices 0.925 / 0.753 → 0.914 / 0.791, a 30k camel sample 0.980 / 0.870 → 0.974 / 0.894, 30k fandisk 0.952 /
+  /// 0.824 → 0.947 / 0.879, bunny 0.986 / 0.925 → 0.986 / 0.932; elephant vertices 0.746 / 0.594 → 0.717 / 0.601.
+  /// Ridge and valley lines keep 3h (their hidden back edges lie closer in front of them). false: h everywhere.
+  bool offset_from_local_spacing = true;
   /// Grazing hits are skipped: a disc hit within grazing_range_factor · h of the vertex whose plane the ray meets
   /// at |cos| below this (about 14° off its plane) does not occlude. A contour's ray is tangent to the surface and
   /// grazes the discs of the rim ahead of it, well beyond the self offset; true occluders are crossed, not grazed.
