@@ -1,8 +1,10 @@
 #include "pcsketch/render/write.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cctype>
-#include <tbb/parallel_for_each.h>
+#include <exception>
 
 #include "pcsketch/core/error.h"
 #include "pcsketch/render/json.h"
@@ -36,8 +38,17 @@ void write_drawing(const Drawing& drawing, const std::filesystem::path& path, co
 
 void write_drawings(const Drawing& drawing, const std::vector<std::filesystem::path>& paths,
                     const RenderOptions& options) {
-  tbb::parallel_for_each(paths.begin(), paths.end(),
-                         [&](const std::filesystem::path& path) { write_drawing(drawing, path, options); });
+  // Failures are caught per file: an exception escaping a TBB task would cancel the writes not yet started.
+  std::vector<std::exception_ptr> errors(paths.size());
+  tbb::parallel_for(std::size_t{0}, paths.size(), [&](std::size_t i) {
+    try {
+      write_drawing(drawing, paths[i], options);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace pcsketch::render

@@ -386,6 +386,20 @@ TEST(Write, RejectsUnknownExtensionAndUnwritablePath) {
   EXPECT_THROW(write_drawing(sample_drawing(), "/nonexistent-dir/x.pdf"), Error);
 }
 
+TEST(Write, SeveralOutputsInParallelEachAsWrittenAlone) {
+  const Drawing d = sample_drawing();
+  write_drawing(d, temp_path("alone.svg"));
+  write_drawing(d, temp_path("alone.json"));
+  write_drawings(d, {temp_path("both.svg"), temp_path("both.png"), temp_path("both.json")});
+  EXPECT_EQ(read_text(temp_path("both.svg")), read_text(temp_path("alone.svg")));
+  EXPECT_EQ(read_text(temp_path("both.json")), read_text(temp_path("alone.json")));
+  EXPECT_TRUE(Png(temp_path("both.png")).ok());
+  // One failing output is reported; the others are still written.
+  fs::remove(temp_path("both.svg"));
+  EXPECT_THROW(write_drawings(d, {temp_path("both.svg"), "/nonexistent-dir/x.png"}), Error);
+  EXPECT_EQ(read_text(temp_path("both.svg")), read_text(temp_path("alone.svg")));
+}
+
 TEST(Render, EmptyDrawingGivesEmptyLayersAndABlankImage) {
   Drawing d;
   d.width = 64;

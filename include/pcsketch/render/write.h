@@ -13,9 +13,8 @@ namespace pcsketch::render {
 /// case-insensitive). @throws pcsketch::Error for another extension or a write failure.
 void write_drawing(const Drawing& drawing, const std::filesystem::path& path, const RenderOptions& options = {});
 
-/// write_drawing() for every path, the files in parallel (each has its own cairo surface; the bunny's SVG and PNG
-/// take about as long each). @throws pcsketch::Error as write_drawing(), the first failure if several fail; the other
-/// files are still written.
+/// write_drawing() for every path, the files in parallel (each has its own cairo surface). @throws pcsketch::Error
+/// as write_drawing(), the first failure in `paths` order if several fail; the other files are still written.
 void write_drawings(const Drawing& drawing, const std::vector<std::filesystem::path>& paths,
                     const RenderOptions& options = {});
 
