@@ -117,11 +117,12 @@ LineShadow line_shadow(const ShadowInput& in, const Polyline& line, const std::v
       const float far = cam.projection == view::Projection::Perspective ? (cam.eye - q).norm()
                                                                         : std::numeric_limits<float>::infinity();
       const float offset_to_viewer = o.visibility_offset_factor * h;
-      const bool seen = !in.scene.occluded(q, to_viewer, offset_to_viewer, far);
-      // From just in front of q, so that a point on the surface finds its own disc.
-      const bool over_surface = !o.clip_to_surface || in.scene.occluded(q + offset_to_viewer * to_viewer, -to_viewer,
-                                                                        0.f, std::numeric_limits<float>::infinity());
-      valid[i * (m + 1) + j] = seen && over_surface;
+      // The surface-behind test (from just in front of q, so that a point on the surface finds its own disc) only
+      // for points the camera sees: a second ray per hidden point would be wasted.
+      valid[i * (m + 1) + j] =
+          !in.scene.occluded(q, to_viewer, offset_to_viewer, far) &&
+          (!o.clip_to_surface || in.scene.occluded(q + offset_to_viewer * to_viewer, -to_viewer, 0.f,
+                                                   std::numeric_limits<float>::infinity()));
     }
   }
   auto ok = [&](std::size_t i, std::size_t j) { return valid[i * (m + 1) + j] != 0; };
