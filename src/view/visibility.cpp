@@ -36,9 +36,9 @@ bool sees(const SurfaceScene& scene, const Camera& camera, const Vec3f& p, float
   return true;
 }
 
-/// Where each vertex of `line` casts its ray from, and its length unit (h, or for a contour its source disc's radius
-/// where that is larger; VisibilityOptions::offset_from_local_spacing): the vertex, lifted to its source point's tangent plane
-/// when it lies below it (VisibilityOptions::lift_to_source_plane).
+/// Where each vertex of `line` casts its ray from, and its length unit (h, or for a contour its source disc's
+/// radius where that is larger; VisibilityOptions::offset_from_local_spacing): the vertex, lifted to its source
+/// point's tangent plane when it lies below it (VisibilityOptions::lift_to_source_plane).
 struct RayOrigins {
   std::vector<Vec3f> points;
   std::vector<float> unit;
