@@ -44,16 +44,6 @@ struct Job {
 /// in the features tests (fandisk).
 constexpr float kSharpDegrees = 40.f;
 
-/// Image samples (every 0.5 px) of the visible strokes of one kind.
-std::vector<Vec2f> visible_samples(const Drawing& drawing, LineKind kind) {
-  std::vector<Vec2f> out;
-  for (const Stroke& s : drawing.strokes) {
-    if (s.kind != kind || !s.visible) continue;
-    const std::vector<Vec2f> samples = test::sample_polyline(s.image_points, s.closed, 0.5f);
-    out.insert(out.end(), samples.begin(), samples.end());
-  }
-  return out;
-}
 
 /// Runs the whole pipeline on one cloud and scores its lines; returns JSON (crosses the process boundary).
 std::string measure(const Job& job) {
@@ -81,7 +71,7 @@ std::string measure(const Job& job) {
   const test::MeshSharpEdges sharp = test::mesh_sharp_edges(mesh, camera, kSharpDegrees);
   const auto score = [&](LineKind kind, const std::vector<Vec2f>& truth) {
     if (truth.empty()) return nlohmann::json();  // nothing to find: no score
-    const test::LineMatch match = test::match_lines(visible_samples(result.drawing, kind), truth, 3.f);
+    const test::LineMatch match = test::match_lines(test::sample_visible_strokes(result.drawing, kind), truth, 3.f);
     return nlohmann::json{match.precision, match.recall};
   };
   std::size_t strokes = 0;

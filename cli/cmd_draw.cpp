@@ -52,14 +52,19 @@ CLI::Option* add_vec3(CLI::App* cmd, const std::string& name, const std::string&
       name, [flag, set](const std::string& s) { set(parse_vec3(flag, s)); }, help);
 }
 
-void print_timings(const Timings& t, std::size_t points) {
+void print_timings(const Timings& t, const Prepared& prepared) {
   const auto paper = t.table_rows();
   std::printf("%-34s %10s  %s\n", "stage", "seconds", "(paper Table 2 row)");
   for (const auto& [name, seconds] : t.all_rows()) {
     const bool in_paper = std::any_of(paper.begin(), paper.end(), [&](const auto& row) { return row.first == name; });
     std::printf("%-34.*s %10.4f  %s\n", static_cast<int>(name.size()), name.data(), seconds, in_paper ? "*" : "");
   }
-  std::printf("%-34s %10zu\n", "points", points);
+  const differential::Surface& s = prepared.surface;
+  std::printf("%-34s %10zu\n", "points", prepared.cloud.size());
+  std::printf("%-34s %10zu  (%zu isolated, %zu in small clumps)\n", "outliers left out", s.outliers.size(),
+              s.isolated_outliers, s.clustered_outliers);
+  std::printf("%-34s %10.3g  (%s)\n", "noise sigma / h", s.spacing > 0 ? s.input_noise / s.spacing : 0.0,
+              s.denoised ? "denoised" : "not denoised");
 }
 
 void run_draw(DrawArgs& args, const GlobalOptions& global) {
@@ -108,7 +113,7 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
       render::write_drawings(stage.second, paths, options.render);
     });
   }
-  if (args.timings) print_timings(timings, prepared.cloud.size());
+  if (args.timings) print_timings(timings, prepared);
 }
 
 }  // namespace
@@ -192,6 +197,12 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
       ->group(view_group);
   cmd->add_flag("!--no-interior-contours", o.view.contours.interior,
                 "Only the outline: no occluding contours inside it (the paper's contours)")
+      ->group(view_group);
+  cmd->add_option("--contour-persistence", o.view.contours.persistence_factor,
+                  "Interior contours only where n.v reaches this many times the normals' noise on both sides (0: at "
+                  "every sign change)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
       ->group(view_group);
   cmd->add_flag("!--no-uneven-spacing", o.view.contours.adaptive_spacing,
                 "Outline lengths in units of the mean spacing everywhere (the paper's single radius), not of the "

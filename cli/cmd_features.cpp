@@ -17,6 +17,9 @@
 namespace pcsketch::cli {
 namespace {
 
+/// `label` of the points left out as outliers (0–2 are features::PointLabel).
+constexpr std::uint8_t kOutlierLabel = 3;
+
 struct FeaturesArgs {
   std::string in_path;
   std::string out_path;
@@ -33,6 +36,26 @@ std::vector<T> in_file_order(const std::vector<T>& values, const std::vector<std
   std::vector<T> out(values.size());
   for (std::size_t i = 0; i < values.size(); ++i) out[source_index[i]] = values[i];
   return out;
+}
+
+/// The analysed points followed by the outliers analyse_surface left out (normals zero where they have none): every
+/// point of the file, so that `label` can mark the outliers instead of dropping them.
+PointCloud with_outliers(const PointCloud& cloud, const PointCloud& outliers) {
+  PointCloud all = cloud;
+  if (outliers.empty()) return all;
+  all.positions.insert(all.positions.end(), outliers.positions.begin(), outliers.positions.end());
+  if (all.has_normals() || cloud.has_normals()) {
+    if (outliers.has_normals())
+      all.normals.insert(all.normals.end(), outliers.normals.begin(), outliers.normals.end());
+    else
+      all.normals.resize(all.positions.size(), Vec3f::Zero());
+  }
+  if (cloud.has_colors() && outliers.has_colors())
+    all.colors.insert(all.colors.end(), outliers.colors.begin(), outliers.colors.end());
+  else
+    all.colors.clear();
+  all.source_index.insert(all.source_index.end(), outliers.source_index.begin(), outliers.source_index.end());
+  return all;
 }
 
 void write_lines_json(const std::string& path, const PointCloud& cloud, const differential::Surface& surface,
@@ -85,21 +108,27 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   const features::RidgeValleyLines result = features::extract_ridge_valley_lines(cloud, surface, args.features);
   print_warnings(global, result.warnings);
 
-  // Written in the file's point order, so the scalar fields line up with the input cloud.
-  std::vector<std::uint32_t> order(cloud.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
-  const std::vector<std::uint32_t> file_order = in_file_order(order, cloud.source_index);
-  PointCloud out = cloud;
-  if (!cloud.source_index.empty()) permute(out, file_order);
-  const std::vector<float> k1 = in_file_order(surface.curvature.k1, cloud.source_index);
-  const std::vector<float> k2 = in_file_order(surface.curvature.k2, cloud.source_index);
-  const std::vector<float> ki = in_file_order(result.detection.feature_curvature, cloud.source_index);
+  // Written in the file's point order, so the scalar fields line up with the input cloud; outliers get label 3.
+  PointCloud out = with_outliers(cloud, surface.outliers);
+  const std::size_t removed = surface.outliers.size();
+  std::vector<float> k1 = surface.curvature.k1, k2 = surface.curvature.k2, ki = result.detection.feature_curvature;
   std::vector<std::uint8_t> labels(cloud.size());
   for (std::size_t i = 0; i < labels.size(); ++i) labels[i] = static_cast<std::uint8_t>(result.detection.labels[i]);
-  labels = in_file_order(labels, cloud.source_index);
+  for (std::vector<float>* values : {&k1, &k2, &ki}) values->resize(out.size(), 0.f);
+  labels.resize(out.size(), kOutlierLabel);
+  k1 = in_file_order(k1, out.source_index);
+  k2 = in_file_order(k2, out.source_index);
+  ki = in_file_order(ki, out.source_index);
+  labels = in_file_order(labels, out.source_index);
+  if (!out.source_index.empty()) {
+    std::vector<std::uint32_t> order(out.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+    permute(out, in_file_order(order, out.source_index));
+  }
   io::PlyWriteOptions write{.format = args.ascii ? io::PlyFormat::Ascii : io::PlyFormat::BinaryLittleEndian};
   write.comments.push_back("pcsketch features " + args.in_path + ": k1 >= k2 principal curvatures (convex > 0), "
-                           "k_feature = the one of larger magnitude, label 0 none 1 ridge 2 valley");
+                           "k_feature = the one of larger magnitude, label 0 none 1 ridge 2 valley 3 outlier "
+                           "(left out of the analysis)");
   io::write_ply(args.out_path, out,
                 {{"k1", std::span<const float>(k1)},
                  {"k2", std::span<const float>(k2)},
@@ -110,9 +139,9 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
 
   std::size_t ridges = 0;
   for (const Polyline& l : result.lines) ridges += l.kind == LineKind::Ridge;
-  std::printf("%zu points, h = %g: %zu ridge points, %zu valley points; %zu ridge lines, %zu valley lines "
-              "(%zu joins, %zu short lines dropped)\n",
-              cloud.size(), static_cast<double>(surface.spacing), result.detection.ridge_points,
+  std::printf("%zu points (%zu outliers left out), h = %g: %zu ridge points, %zu valley points; %zu ridge lines, "
+              "%zu valley lines (%zu joins, %zu short lines dropped)\n",
+              cloud.size(), removed, static_cast<double>(surface.spacing), result.detection.ridge_points,
               result.detection.valley_points, ridges, result.lines.size() - ridges, result.joins, result.dropped);
   std::printf("detection %.3f s, tracing %.3f s, joining %.3f s\n", result.timings.detection, result.timings.tracing,
               result.timings.joining);
@@ -127,7 +156,7 @@ void add_features_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("IN", args->in_path, "Point cloud: PLY, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ")->required();
   cmd->add_option("-o,--output", args->out_path,
                   "Output PLY: x y z, nx ny nz, k1 k2 k_feature (float, 1/model units), label (uchar: 0 none, "
-                  "1 ridge, 2 valley)")
+                  "1 ridge, 2 valley, 3 outlier left out of the analysis); every point of the input, in its order")
       ->required();
   cmd->add_option("--lines", args->lines_path, "Also write the ridge/valley polylines (world coordinates) as JSON");
   cmd->add_flag("--ascii", args->ascii, "Write ascii PLY instead of binary little-endian");

@@ -23,7 +23,9 @@ void run_sample(const SampleArgs& args) {
   const PointCloud cloud = io::sample_mesh(mesh, args.sample);
   io::PlyWriteOptions write{.format = args.ascii ? io::PlyFormat::Ascii : io::PlyFormat::BinaryLittleEndian};
   write.comments.push_back("pcsketch sample " + args.mesh_path + " -n " + std::to_string(args.sample.n) + " --noise " +
-                           std::to_string(args.sample.noise_sigma_factor) + " --seed " +
+                           std::to_string(args.sample.noise_sigma_factor) + " --outliers " +
+                           std::to_string(args.sample.outlier_fraction) + " --outlier-clump " +
+                           std::to_string(args.sample.outlier_clump) + " --seed " +
                            std::to_string(args.sample.seed));
   io::write_ply(args.out_path, cloud, {}, write);
   std::printf("wrote %zu points sampled from %zu faces of %s to %s\n", cloud.size(), mesh.faces.size(),
@@ -43,6 +45,14 @@ void add_sample_command(CLI::App& app, const GlobalOptions&) {
                   "Gaussian noise sigma as a fraction of the bounding-box diagonal (0.001 = 0.1%)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--outliers", args->sample.outlier_fraction,
+                  "Stray points added, as a fraction of n, uniform in the bounding box grown by 10% of the diagonal")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--outlier-clump", args->sample.outlier_clump,
+                  "Outliers in clumps of this many points (1: isolated points)")
+      ->capture_default_str()
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}));
   cmd->add_option("--seed", args->sample.seed, "Random seed: same seed, same cloud")->capture_default_str();
   cmd->add_flag("--keep-normals", args->sample.keep_normals,
                 "Store each sample's face normal (a raw scan has none, so the default is off)");

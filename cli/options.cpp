@@ -39,6 +39,32 @@ void add_surface_options(CLI::App* cmd, differential::SurfaceOptions& surface) {
       ->check(CLI::IsMember({"auto", "trust", "orient"}))
       ->default_str("auto")
       ->group(group);
+  cmd->add_flag("!--keep-outliers", surface.outliers.enabled,
+                "Draw every point (default: stray points far sparser than the cloud, and detached clumps, are left "
+                "out)")
+      ->group(group);
+  add_checked(cmd, "--outlier-density", surface.outliers.density_factor,
+              "A point is stray when its mean distance to its 8 nearest exceeds this times the cloud's median and no "
+              "denser point is near",
+              CLI::Range(1.0, 1000.0), group);
+  add_checked(cmd, "--outlier-min-cluster", surface.outliers.min_cluster,
+              "Detached clumps with fewer points are left out (at least 0.05% of the cloud)", CLI::Range(1, 1 << 30),
+              group);
+  cmd->add_flag("!--no-denoise", surface.denoise.enabled,
+                "Keep noisy points where they are (default: a cloud whose estimated noise exceeds --denoise-trigger "
+                "is denoised, edges kept sharp)")
+      ->group(group);
+  add_checked(cmd, "--denoise-trigger", surface.denoise.min_noise_factor,
+              "Denoise when the estimated noise sigma exceeds this many h", CLI::Range(0.0, 100.0), group);
+  add_checked(cmd, "--denoise-iterations", surface.denoise.iterations,
+              "Denoising rounds (normals filtered, points moved onto their neighbours' tangent planes)",
+              CLI::Range(1, 100), group);
+  add_checked(cmd, "--denoise-passes", surface.denoise.normal_passes,
+              "Bilateral normal-filtering passes per denoising round", CLI::Range(0, 100), group);
+  add_checked(cmd, "--denoise-cutoff", surface.denoise.normal_cutoff,
+              "Normals differing by 1-|cos| of at least this are not averaged (0.15: creases over 32 degrees stay "
+              "sharp)",
+              CLI::Range(0.001, 1.0), group);
   // Orientation runs on estimated normals, and on file normals when --file-normals re-orients them.
   add_enum(cmd, "--orientation", surface.orientation.criterion,
            {{"reflect", differential::OrientCriterion::Reflect}, {"parallel", differential::OrientCriterion::Parallel}},

@@ -45,7 +45,14 @@ nlohmann::json surface_options_json(const differential::SurfaceOptions& s) {
           {"outward", s.orientation.outward == differential::OutwardRule::Volume          ? "volume"
                       : s.orientation.outward == differential::OutwardRule::FarthestPoint ? "farthest"
                                                                                           : "none"},
-          {"reorder", s.reorder}};
+          {"reorder", s.reorder},
+          {"outliers", s.outliers.to_json()},
+          {"denoise",
+           {{"enabled", s.denoise.enabled},
+            {"min_noise_factor", s.denoise.min_noise_factor},
+            {"iterations", s.denoise.iterations},
+            {"normal_passes", s.denoise.normal_passes},
+            {"normal_cutoff", s.denoise.normal_cutoff}}}};
 }
 
 /// The view's lines as strokes, keeping only the kinds `selection` asks for.
@@ -82,6 +89,12 @@ nlohmann::json parameters_json(const Prepared& prepared, const DrawOptions& opti
   j["camera"] = camera_options_json(camera);
   j["resolved"] = {{"points", prepared.cloud.size()},
                    {"spacing_h", prepared.surface.spacing},
+                   {"outliers_removed", prepared.surface.outliers.size()},
+                   {"isolated_outliers", prepared.surface.isolated_outliers},
+                   {"clustered_outliers", prepared.surface.clustered_outliers},
+                   {"input_noise_sigma", prepared.surface.input_noise},
+                   {"denoised", prepared.surface.denoised},
+                   {"normal_noise", prepared.surface.normal_noise},
                    {"tracing_radius_r", prepared.features.radius},
                    {"ridge_threshold", prepared.features.detection.ridge_threshold},
                    {"valley_threshold", prepared.features.detection.valley_threshold}};
@@ -148,10 +161,12 @@ namespace {
 
 /// Every stage of Timings in pipeline order with its row name (the paper's Table 2 name where it has one): the one
 /// list that total(), all_rows() and += walk.
-constexpr std::array<std::pair<std::string_view, double Timings::*>, 13> kTimingRows{{
+constexpr std::array<std::pair<std::string_view, double Timings::*>, 15> kTimingRows{{
     {"read", &Timings::read},
     {"reorder", &Timings::reorder},
     {"neighbourhoods", &Timings::neighbourhoods},
+    {"outliers", &Timings::outliers},
+    {"denoise", &Timings::denoise},
     {"normals", &Timings::normals},
     {"curvature", &Timings::curvature},
     {"ridge-valley points extraction", &Timings::ridge_valley_points},
@@ -228,6 +243,8 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   const differential::SurfaceTimings& st = p.surface.timings;
   p.timings.reorder = st.reorder;
   p.timings.neighbourhoods = st.kd_tree + st.neighbourhoods;
+  p.timings.outliers = st.outliers;
+  p.timings.denoise = st.denoise;
   p.timings.normals = st.normals + st.orientation;
   p.timings.curvature = st.curvature;
   p.warnings.insert(p.warnings.end(), p.surface.warnings.begin(), p.surface.warnings.end());

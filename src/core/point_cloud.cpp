@@ -25,6 +25,11 @@ void apply_order(std::vector<T>& values, const std::vector<std::uint32_t>& order
 
 void permute(PointCloud& cloud, const std::vector<std::uint32_t>& order) {
   PCS_ASSERT(order.size() == cloud.size(), "permutation size must match the cloud");
+  select(cloud, order);
+}
+
+void select(PointCloud& cloud, const std::vector<std::uint32_t>& order) {
+  for (const std::uint32_t i : order) PCS_ASSERT(i < cloud.size(), "selected index out of range");
   if (cloud.source_index.empty()) {
     cloud.source_index.resize(cloud.size());
     std::iota(cloud.source_index.begin(), cloud.source_index.end(), 0u);

@@ -1,6 +1,7 @@
 #include "pcsketch/differential/curvature.h"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -180,6 +181,54 @@ double noise_estimate(const std::vector<double>& residual, std::vector<double>& 
   return std::sqrt(noise_share) * outer_median;
 }
 
+/// Points that get their own wide fit: every `every`-th in the (space-filling-curve) order, and any point none of
+/// whose shared neighbours is one of those.
+std::vector<std::uint8_t> fit_subset(const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t every) {
+  const std::size_t n = neighbourhoods.size();
+  std::vector<std::uint8_t> fitted(n, 0);
+  if (every <= 1 || neighbourhoods.k == 0) {
+    fitted.assign(n, 1);
+    return fitted;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const auto nb = neighbourhoods.of(i);
+      fitted[i] = i % every == 0 || std::none_of(nb.begin(), nb.end(), [&](std::uint32_t j) { return j % every == 0; });
+    }
+  });
+  return fitted;
+}
+
+/// The points without a wide fit of their own take the mean shape operator Σ k d dᵀ of their fitted neighbours,
+/// seen in their own tangent plane: the wide fits span several times the subset's spacing, so their curvature
+/// varies little between neighbours.
+void spread_from_subset(Curvature& c, const std::vector<Vec3f>& normals,
+                        const neighbourhood::Neighbourhoods& neighbourhoods, const std::vector<std::uint8_t>& fitted) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fitted.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      if (fitted[i]) continue;
+      Eigen::Matrix3d shape = Eigen::Matrix3d::Zero();
+      for (const std::uint32_t j : neighbourhoods.of(i)) {
+        if (!fitted[j]) continue;
+        const Vec3d d1 = c.dir1[j].cast<double>(), d2 = c.dir2[j].cast<double>();
+        shape += c.k1[j] * d1 * d1.transpose() + c.k2[j] * d2 * d2.transpose();
+      }
+      Vec3d u, v;
+      tangent_frame(normals[i].cast<double>().normalized(), u, v);
+      Eigen::Matrix2d m;
+      m << u.dot(shape * u), u.dot(shape * v), v.dot(shape * u), v.dot(shape * v);
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(m);
+      const double count = static_cast<double>(std::count_if(neighbourhoods.of(i).begin(), neighbourhoods.of(i).end(),
+                                                             [&](std::uint32_t j) { return fitted[j] != 0; }));
+      const Eigen::Vector2d e1 = eigen.eigenvectors().col(1);  // ascending: column 1 is the larger curvature
+      c.k1[i] = static_cast<float>(eigen.eigenvalues()[1] / count);
+      c.k2[i] = static_cast<float>(eigen.eigenvalues()[0] / count);
+      c.dir1[i] = Vec3d(e1.x() * u + e1.y() * v).normalized().cast<float>();
+      c.dir2[i] = normals[i].cross(c.dir1[i]).normalized();
+    }
+  });
+}
+
 Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                    const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree* given_tree,
                    const CurvatureOptions& options) {
@@ -199,7 +248,8 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   const std::size_t stride = std::max<std::size_t>(1, n / 16384);
 
   std::optional<neighbourhood::KdTree> own_tree;
-  const auto run = [&](std::size_t k, bool from_tree) {
+  // Fits over k neighbours (from the tree when wider than the shared lists) at every point, or only where `fitted`.
+  const auto run = [&](std::size_t k, bool from_tree, const std::vector<std::uint8_t>* fitted) {
     result.fit_neighbours = k;
     const neighbourhood::KdTree* tree = given_tree;
     if (from_tree && !tree) tree = &own_tree.emplace(points);
@@ -207,6 +257,7 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
       thread_local std::vector<std::uint32_t> found;
       thread_local std::vector<float> distances;
       for (std::size_t i = begin; i < end; ++i) {
+        if (fitted && !(*fitted)[i]) continue;
         const std::uint32_t* nb = neighbourhoods.indices.data() + i * neighbourhoods.k;
         std::size_t count = k;
         if (from_tree) {
@@ -230,17 +281,22 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   const std::size_t available = n == 0 ? 0 : n - 1;
   if (options.k != 0) {
     const std::size_t k = std::min(options.k, available);
-    run(k, k > shared);
+    run(k, k > shared, nullptr);
   } else {
     if (shared >= kInnerFit + 4) inner_residual.resize((n + stride - 1) / stride);
-    run(shared, false);
+    run(shared, false, nullptr);
     result.noise_sigma = static_cast<float>(noise_estimate(residual, inner_residual, stride, shared));
     if (options.adapt_to_noise && options.noise_tolerance > 0 && shared > 0) {
       const double wanted =
           8.0 * result.noise_sigma * std::sqrt(kPi * density(neighbourhoods)) / options.noise_tolerance;
       const std::size_t k = std::min({static_cast<std::size_t>(std::ceil(wanted)), options.max_k, available});
       // The fit's curvature noise falls as 1/√k: under 1.25·shared (< 11% less noise) the refit is not worth it.
-      if (4 * k > 5 * shared) run(k, true);
+      if (4 * k > 5 * shared) {
+        const std::size_t every = options.wide_fit_share == 0 ? 1 : std::max<std::size_t>(1, k / options.wide_fit_share);
+        const std::vector<std::uint8_t> fitted = fit_subset(neighbourhoods, every);
+        run(k, true, &fitted);
+        spread_from_subset(result, normals, neighbourhoods, fitted);
+      }
       if (wanted > static_cast<double>(options.max_k) && options.max_k < available)
         result.warnings.push_back("curvature: the noise (σ ≈ " + std::to_string(result.noise_sigma) +
                                   ") calls for fits over " + std::to_string(static_cast<std::size_t>(wanted)) +
@@ -254,6 +310,25 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
 }
 
 }  // namespace
+
+float estimate_noise(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
+                     const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t max_samples) {
+  const std::size_t n = points.size();
+  detail::check_neighbourhoods("noise estimate", n, neighbourhoods);
+  const std::size_t k = neighbourhoods.k;
+  if (n == 0 || k == 0 || normals.size() != n) return 0.f;
+  const std::size_t stride = std::max<std::size_t>(1, n / std::max<std::size_t>(max_samples, 1));
+  const std::size_t samples = (n + stride - 1) / stride;
+  std::vector<double> residual(samples), inner(k >= kInnerFit + 4 ? samples : 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      const std::size_t i = j * stride;
+      const std::uint32_t* nb = neighbourhoods.indices.data() + i * k;
+      residual[j] = fit_point(points, i, normals[i], nb, k, inner.empty() ? nullptr : &inner[j]).residual;
+    }
+  });
+  return static_cast<float>(noise_estimate(residual, inner, 1, k));
+}
 
 Curvature estimate_curvature(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                              const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree& tree,

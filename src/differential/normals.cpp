@@ -76,3 +76,29 @@ NormalResult estimate_normals(const std::vector<Vec3f>& points, const neighbourh
 }
 
 }  // namespace pcsketch::differential
+
+namespace pcsketch::differential {
+
+float normal_noise(const std::vector<Vec3f>& normals, const neighbourhood::Neighbourhoods& neighbourhoods,
+                   std::size_t max_samples) {
+  const std::size_t n = normals.size();
+  detail::check_neighbourhoods("normal noise", n, neighbourhoods);
+  const std::size_t k = std::min<std::size_t>(8, neighbourhoods.k);
+  if (n == 0 || k == 0) return 0.f;
+  const std::size_t stride = std::max<std::size_t>(1, n / std::max<std::size_t>(max_samples, 1));
+  std::vector<float> angle((n + stride - 1) / stride);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, angle.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t s = r.begin(); s != r.end(); ++s) {
+      const Vec3f& ni = normals[s * stride];
+      Vec3f mean = Vec3f::Zero();
+      for (const std::uint32_t j : neighbourhoods.of(s * stride).first(k))
+        mean += normals[j].dot(ni) < 0 ? Vec3f(-normals[j]) : normals[j];
+      angle[s] = mean.squaredNorm() > 0 ? std::atan2(ni.cross(mean).norm(), ni.dot(mean)) : 0.f;
+    }
+  });
+  const auto mid = angle.begin() + static_cast<std::ptrdiff_t>(angle.size() / 2);
+  std::nth_element(angle.begin(), mid, angle.end());
+  return *mid;
+}
+
+}  // namespace pcsketch::differential

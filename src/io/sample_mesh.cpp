@@ -38,12 +38,36 @@ class Rng {
 // Fixed chunk size: each chunk's generator depends only on (seed, chunk), so any thread count gives the same cloud.
 constexpr std::size_t kChunk = 16384;
 
+/// Appends options.outlier_fraction · n stray points (see SampleOptions), from a generator of their own.
+void add_outliers(PointCloud& cloud, const Mesh& mesh, const SampleOptions& options) {
+  const auto count = static_cast<std::size_t>(std::llround(options.outlier_fraction * static_cast<double>(options.n)));
+  if (count == 0) return;
+  const Box3f box = bounding_box(mesh.vertices);
+  const double diagonal = box.diagonal();
+  const Vec3d low = box.min.cast<double>() - Vec3d::Constant(0.1 * diagonal);
+  const Vec3d extent = box.size().cast<double>() + Vec3d::Constant(0.2 * diagonal);
+  Rng rng(options.seed ^ 0x6f75746c69657273ull);  // "outliers"
+  Vec3d centre = Vec3d::Zero();
+  for (std::size_t j = 0; j < count; ++j) {
+    if (j % options.outlier_clump == 0)
+      centre = low + Vec3d(rng.uniform(), rng.uniform(), rng.uniform()).cwiseProduct(extent);
+    Vec3d p = centre;
+    if (options.outlier_clump > 1) p += 0.002 * diagonal * Vec3d(rng.gaussian(), rng.gaussian(), rng.gaussian());
+    cloud.positions.push_back(p.cast<float>());
+    cloud.source_index.push_back(kOutlier);
+    if (options.keep_normals) cloud.normals.push_back(Vec3f::UnitZ());
+  }
+}
+
 }  // namespace
 
 PointCloud sample_mesh(const Mesh& mesh, const SampleOptions& options) {
   if (options.n == 0) throw Error("sample_mesh: n must be at least 1");
   if (options.n > 0xffffffffull) throw Error("sample_mesh: n must be below 2^32");
   if (!(options.noise_sigma_factor >= 0.0)) throw Error("sample_mesh: noise sigma must be non-negative");
+  if (!(options.outlier_fraction >= 0.0 && options.outlier_fraction <= 1.0))
+    throw Error("sample_mesh: the outlier fraction must be in [0, 1]");
+  if (options.outlier_clump == 0) throw Error("sample_mesh: outlier clumps need at least 1 point");
   const std::size_t nv = mesh.vertices.size();
   std::vector<double> cumulative(mesh.faces.size());
   double total = 0.0;
@@ -90,6 +114,7 @@ PointCloud sample_mesh(const Mesh& mesh, const SampleOptions& options) {
       }
     }
   });
+  add_outliers(cloud, mesh, options);
   return cloud;
 }
 

@@ -381,12 +381,13 @@ nlohmann::json ContourOptions::to_json() const {
           {"interior_dedupe_factor", interior_dedupe_factor},
           {"interior_trace_radius_factor", interior_trace_radius_factor},
           {"interior_z_max_factor", interior_z_max_factor},
+          {"persistence_factor", persistence_factor},
           {"adaptive_spacing", adaptive_spacing}};
 }
 
 ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                                   const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
-                                  const Camera& camera, const ContourOptions& o) {
+                                  const Camera& camera, const ContourOptions& o, float normal_noise) {
   if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("contours: the mean spacing h must be positive");
   const std::size_t n = positions.size();
   if (o.interior && n > 0) {
@@ -514,20 +515,35 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       for (std::size_t i = range.begin(); i != range.end(); ++i)
         facing[i] = normals[i].dot(camera.ray_direction(positions[i]));
     });
+    const std::size_t m = std::min(o.interior_neighbours, neighbourhoods.k);
+    // reach[i] = (largest n·v, largest −n·v) over i and its m nearest: how firmly each side is reached near i.
+    std::vector<std::pair<float, float>> reach(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+        float away = facing[i], toward = -facing[i];
+        for (const std::uint32_t j : neighbourhoods.of(i).first(m)) {
+          away = std::max(away, facing[j]);
+          toward = std::max(toward, -facing[j]);
+        }
+        reach[i] = {away, toward};
+      }
+    });
+    const float persistent = o.persistence_factor * normal_noise;
+    // Side of f firmly reached near point i (the side f's sign says).
+    const auto firm = [&](std::size_t i, float f) { return (f > 0 ? reach[i].first : reach[i].second) >= persistent; };
     std::vector<Vec3f> sample(n);
     std::vector<char> has_sample(n, 0);
-    const std::size_t m = std::min(o.interior_neighbours, neighbourhoods.k);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
       for (std::size_t i = range.begin(); i != range.end(); ++i) {
         const float fi = facing[i];
-        if (fi == 0 || !std::isfinite(fi) || cp.spacing_px[i] <= 0) continue;
+        if (fi == 0 || !std::isfinite(fi) || cp.spacing_px[i] <= 0 || !firm(i, fi)) continue;
         Vec3f sum = Vec3f::Zero();
         int count = 0;
         const auto nb = neighbourhoods.of(i);
         for (std::size_t a = 0; a < m; ++a) {
           const std::uint32_t j = nb[a];
           const float fj = facing[j];
-          if (!(fi * fj < 0)) continue;
+          if (!(fi * fj < 0) || !firm(j, fj)) continue;
           const float t = fi / (fi - fj);
           sum += positions[i] + t * (positions[j] - positions[i]);
           ++count;

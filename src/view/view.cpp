@@ -41,7 +41,7 @@ ViewResult compute_view(const PointCloud& cloud, const differential::Surface& su
 
   auto start = std::chrono::steady_clock::now();
   result.contour_points = find_contour_points(cloud.positions, cloud.normals, surface.neighbourhoods, surface.spacing,
-                                              camera, options.contours);
+                                              camera, options.contours, surface.normal_noise);
   result.timings.contour_points = seconds_since(start);
 
   start = std::chrono::steady_clock::now();

@@ -131,17 +131,25 @@ std::vector<Segment> cube_edges(float a) {
   return edges;
 }
 
-void expect_cube_edges_traced(const Analysed& r, float a) {
+/// What a traced cube must show: every edge covered over `fraction` of its length within 2h, in at most `pieces`
+/// lines, and `precise` of the ridge samples within 2h of an edge; no valley.
+struct CubeExpectation {
+  double fraction = 0.9;
+  std::size_t pieces = 2;
+  double precise = 0.95;
+};
+
+void expect_cube_edges_traced(const Analysed& r, float a, const CubeExpectation& expected = {}) {
   const float h = r.surface.spacing;
   const std::vector<Segment> edges = cube_edges(a);
   const auto ridges = of_kind(r.result.lines, LineKind::Ridge);
   EXPECT_TRUE(of_kind(r.result.lines, LineKind::Valley).empty());
   const Coverage c = coverage(edges, ridges, h, 2.f * h);
   for (std::size_t e = 0; e < edges.size(); ++e) {
-    EXPECT_GE(c.edge_fraction[e], 0.9) << "edge " << e;
-    EXPECT_LE(c.pieces[e], 2u) << "edge " << e;
+    EXPECT_GE(c.edge_fraction[e], expected.fraction) << "edge " << e;
+    EXPECT_LE(c.pieces[e], expected.pieces) << "edge " << e;
   }
-  EXPECT_GE(precision(ridges, edges, 2.f * h), 0.95);
+  EXPECT_GE(precision(ridges, edges, 2.f * h), expected.precise);
 }
 
 TEST(RidgeValleyLines, CubeEdgesAreRidges) {
@@ -153,7 +161,28 @@ TEST(RidgeValleyLines, NoisyCubeEdgesAreRidges) {
   const float a = 1.f;
   const float sigma = 0.001f * 2.f * std::sqrt(3.f) * a;  // 0.1% of the diagonal
   const Analysed r = run(test::cube(a, {.n = 30000, .seed = 7, .noise_sigma = sigma}));
-  expect_cube_edges_traced(r, a);
+  // Denoised (the noise is about 0.3 h here): one edge of twelve now breaks into 3 pieces instead of 2.
+  expect_cube_edges_traced(r, a, {.pieces = 3});
+}
+
+TEST(RidgeValleyLines, CubeEdgesAreRidgesUnderNoiseOfPointThreePercent) {
+  const float a = 1.f;
+  const float sigma = 0.003f * 2.f * std::sqrt(3.f) * a;  // 0.3% of the diagonal: about h at 30k points
+  const Analysed r = run(test::cube(a, {.n = 30000, .seed = 8, .noise_sigma = sigma}));
+  // Measured: every edge covered over 75–100% of its length (the weakest 0.75), 88% of the ridge samples on an edge.
+  expect_cube_edges_traced(r, a, {.fraction = 0.7, .pieces = 4, .precise = 0.85});
+}
+
+TEST(RidgeValleyLines, NoisySphereAndTorusHaveNoLines) {
+  for (const float fraction : {0.001f, 0.003f}) {
+    SCOPED_TRACE("noise " + std::to_string(fraction) + " of the diagonal");
+    const float sphere_sigma = fraction * test::diagonal(test::sphere(1.f, {.n = 1000}));
+    const Analysed sphere = run(test::sphere(1.f, {.n = 20000, .seed = 5, .noise_sigma = sphere_sigma}));
+    EXPECT_TRUE(sphere.result.lines.empty()) << sphere.result.lines.size() << " lines";
+    const float torus_sigma = fraction * test::diagonal(test::torus(1.f, 0.3f, {.n = 1000}));
+    const Analysed torus = run(test::torus(1.f, 0.3f, {.n = 20000, .seed = 6, .noise_sigma = torus_sigma}));
+    EXPECT_TRUE(torus.result.lines.empty()) << torus.result.lines.size() << " lines";
+  }
 }
 
 TEST(RidgeValleyLines, NoValleysBesideTheEdgesOfASparseCube) {

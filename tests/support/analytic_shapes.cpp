@@ -97,4 +97,24 @@ PointCloud cube(float a, const SampleSpec& spec) {
 
 float diagonal(const PointCloud& cloud) { return bounding_box(cloud.positions).diagonal(); }
 
+void add_outliers(PointCloud& cloud, float fraction, std::size_t clump, std::uint32_t seed) {
+  const Box3f box = bounding_box(cloud.positions);
+  const float d = box.diagonal();
+  const std::size_t n = cloud.size();
+  cloud.source_index.resize(n);
+  for (std::size_t i = 0; i < n; ++i) cloud.source_index[i] = static_cast<std::uint32_t>(i);
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> g(0.f, 1.f);
+  const auto count = static_cast<std::size_t>(std::lround(fraction * static_cast<float>(n)));
+  Vec3f centre = Vec3f::Zero();
+  for (std::size_t j = 0; j < count; ++j) {
+    if (j % clump == 0)
+      for (int a = 0; a < 3; ++a) centre[a] = uniform(rng, box.min[a] - 0.1f * d, box.max[a] + 0.1f * d);
+    const Vec3f p = clump > 1 ? Vec3f(centre + 0.002f * d * Vec3f(g(rng), g(rng), g(rng))) : centre;
+    cloud.positions.push_back(p);
+    cloud.source_index.push_back(kOutlier);
+    if (!cloud.normals.empty()) cloud.normals.push_back(Vec3f::UnitZ());
+  }
+}
+
 }  // namespace pcsketch::test

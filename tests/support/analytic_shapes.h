@@ -29,4 +29,11 @@ PointCloud cube(float a, const SampleSpec& spec = {});
 /// Diagonal of the bounding box of a cloud (for noise relative to the diagonal).
 float diagonal(const PointCloud& cloud);
 
+/// source_index of the points add_outliers appends.
+inline constexpr std::uint32_t kOutlier = 0xffffffffu;
+/// Appends fraction · #P stray points to `cloud`, uniform in its bounding box grown by 10% of the diagonal on every
+/// side, in clumps of `clump` points (1: isolated; else Gaussian blobs of σ = 0.2% of the diagonal). The surface
+/// points get source_index 0..#P−1, the stray ones kOutlier; normals (if any) of stray points are +z.
+void add_outliers(PointCloud& cloud, float fraction, std::size_t clump = 1, std::uint32_t seed = 99);
+
 }  // namespace pcsketch::test

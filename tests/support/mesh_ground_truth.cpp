@@ -237,6 +237,16 @@ std::vector<Vec2f> sample_polyline(const std::vector<Vec2f>& points, bool closed
   return out;
 }
 
+std::vector<Vec2f> sample_visible_strokes(const Drawing& drawing, LineKind kind, float step_px) {
+  std::vector<Vec2f> out;
+  for (const Stroke& s : drawing.strokes) {
+    if (s.kind != kind || !s.visible) continue;
+    const std::vector<Vec2f> samples = sample_polyline(s.image_points, s.closed, step_px);
+    out.insert(out.end(), samples.begin(), samples.end());
+  }
+  return out;
+}
+
 std::vector<Vec2f> sample_view_lines(const std::vector<view::ViewLine>& lines, LineKind kind, bool visible,
                                      float step_px) {
   std::vector<Vec2f> out;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "pcsketch/core/drawing.h"
 #include "pcsketch/core/point_cloud.h"
 #include "pcsketch/view/camera.h"
 #include "pcsketch/view/visibility.h"
@@ -76,6 +77,9 @@ LineMatch match_lines(const std::vector<Vec2f>& drawn, const std::vector<Vec2f>&
 
 /// Samples of a 2D polyline every `step_px` pixels (vertices included).
 std::vector<Vec2f> sample_polyline(const std::vector<Vec2f>& points, bool closed, float step_px);
+
+/// Image samples (every `step_px`) of the visible strokes of one kind of a drawing.
+std::vector<Vec2f> sample_visible_strokes(const Drawing& drawing, LineKind kind, float step_px = 0.5f);
 
 /// Image samples (every `step_px`) of the runs of `lines` of the given kind: visible runs, or hidden ones.
 std::vector<Vec2f> sample_view_lines(const std::vector<view::ViewLine>& lines, LineKind kind, bool visible,

@@ -51,6 +51,9 @@ Box3f bounding_box(const std::vector<Vec3f>& positions);
 
 /// Reorders every per-point array of `cloud` by `order` (new i = old order[i]) and composes source_index with it.
 void permute(PointCloud& cloud, const std::vector<std::uint32_t>& order);
+/// Keeps the points `order` lists, in that order (new i = old order[i]), in every per-point array; source_index is
+/// composed with it, so kept points still name their place in the file.
+void select(PointCloud& cloud, const std::vector<std::uint32_t>& order);
 
 /// A triangle mesh: #V vertices (same origin convention as PointCloud) and #F index triples.
 struct Mesh {

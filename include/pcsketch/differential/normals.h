@@ -27,4 +27,11 @@ struct NormalResult {
 NormalResult estimate_normals(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& neighbourhoods,
                               const NormalOptions& options = {});
 
+/// Angular noise of unit normals, radians: the median over points (at most `max_samples`, spread along the point
+/// order) of the angle between a normal and the mean of its 8 nearest neighbours' (signs aligned). The surface's
+/// bending tilts the neighbours' normals symmetrically and cancels in their mean, so a clean smooth cloud gives
+/// nearly 0 and noise of δ per normal gives about δ.
+float normal_noise(const std::vector<Vec3f>& normals, const neighbourhood::Neighbourhoods& neighbourhoods,
+                   std::size_t max_samples = 16384);
+
 }  // namespace pcsketch::differential

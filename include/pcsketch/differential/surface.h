@@ -4,9 +4,11 @@
 
 #include <optional>
 
+#include "pcsketch/clean/outliers.h"
 #include "pcsketch/core/point_cloud.h"
 #include "pcsketch/core/report.h"
 #include "pcsketch/differential/curvature.h"
+#include "pcsketch/differential/denoise.h"
 #include "pcsketch/differential/normals.h"
 #include "pcsketch/differential/orient_normals.h"
 #include "pcsketch/neighbourhood/neighbourhoods.h"
@@ -15,6 +17,8 @@ namespace pcsketch::differential {
 
 struct SurfaceOptions {
   neighbourhood::NeighbourhoodOptions neighbourhood;
+  clean::OutlierOptions outliers;
+  DenoiseOptions denoise;
   NormalOptions normals;
   OrientOptions orientation;
   CurvatureOptions curvature;
@@ -35,20 +39,28 @@ struct SurfaceOptions {
 
 /// Seconds spent in each step, for --timings and bench/.
 struct SurfaceTimings {
-  double reorder = 0, kd_tree = 0, neighbourhoods = 0, normals = 0, orientation = 0, curvature = 0;
+  double reorder = 0, kd_tree = 0, neighbourhoods = 0, outliers = 0, denoise = 0, normals = 0, orientation = 0, curvature = 0;
 };
 
 struct Surface {
   neighbourhood::Neighbourhoods neighbourhoods;
   float spacing = 0;  ///< mean point spacing h, model units
+  /// The points left out as outliers (clean::find_outliers), with their source_index: the cloud no longer holds
+  /// them, the user's data still does.
+  PointCloud outliers;
+  std::size_t isolated_outliers = 0, clustered_outliers = 0;  ///< how many of them were isolated / in small clumps
   Curvature curvature;
   bool normals_estimated = false;  ///< normals come from PCA (not from the file)
+  bool denoised = false;           ///< the points were moved by denoise() (the noise exceeded its trigger)
+  float input_noise = 0;           ///< σ̂ of the cloud as read, model units (0 when denoising is off)
+  float normal_noise = 0;          ///< angular noise of the final normals, radians (differential::normal_noise)
   std::size_t components = 0;      ///< connected components found by the orientation (0 if it did not run)
   SurfaceTimings timings;
   Warnings warnings;
 };
 
-/// Runs every view-independent step on `cloud`, which it reorders and gives normals (oriented) in place.
+/// Runs every view-independent step on `cloud`, which it reorders, rids of outliers (moved to Surface::outliers),
+/// denoises when noisy and gives normals (oriented) in place.
 /// Collinear or coplanar clouds get a defined result (arbitrary perpendicular normals, zero curvature) and warnings.
 /// @throws pcsketch::Error for a cloud with fewer than 3 distinct points (nothing to call a surface)
 Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options = {});

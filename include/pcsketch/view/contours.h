@@ -82,6 +82,12 @@ struct ContourOptions {
   /// units of h. The rim samples scatter about h around the generator on both sides; 2.5 keeps chains unbroken
   /// (mesh ground truth: recall +5% over 1.5 at unchanged precision).
   float interior_z_max_factor = 2.5f;
+  /// Beyond the paper: a sign change of n·v makes a rim sample only if it persists: the point on each side has, among
+  /// itself and its interior_neighbours, one with |n·v| ≥ persistence_factor × the normals' angular noise
+  /// (Surface::normal_noise) on its own side. Noisy normals flip the sign of n·v wherever it is small (a face seen
+  /// edge-on, the band around a rim); a real rim has n·v growing away from it on both sides. Clean clouds have a
+  /// noise near 0, which leaves them as they were. 0 accepts every sign change (the rule before it).
+  float persistence_factor = 2.0f;
 
   // --- the outline's scale ---
   /// Beyond the paper: the h_px of the outline's lengths (r, trace radius, z_max, absorb, min length) is each point's
@@ -113,10 +119,11 @@ struct ContourPoints {
 /// @param normals #P oriented unit normals (only read when options.interior; may then not be empty)
 /// @param neighbourhoods the 3D k-NN lists of the cloud (only read when options.interior)
 /// @param spacing mean spacing h, model units (> 0)
+/// @param normal_noise angular noise of the normals, radians (Surface::normal_noise; see persistence_factor)
 /// @throws pcsketch::Error for a non-positive spacing or missing normals/neighbourhoods when interior is on.
 ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                                   const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
-                                  const Camera& camera, const ContourOptions& options = {});
+                                  const Camera& camera, const ContourOptions& options = {}, float normal_noise = 0);
 
 /// The contour lines of one view, all of kind Contour.
 struct ContourLines {

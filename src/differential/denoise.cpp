@@ -1,0 +1,146 @@
+#include "pcsketch/differential/denoise.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "differential/common.h"
+#include "neighbourhood/parallel_chunks.h"
+#include "pcsketch/differential/curvature.h"
+#include "pcsketch/differential/normals.h"
+
+namespace pcsketch::differential {
+
+namespace {
+
+/// The distance part of the bilateral weights, #P·k: a Gaussian of the distance, its width the distance to the
+/// point's farthest neighbour. Fixed within a round (the points do not move while their normals are filtered).
+std::vector<float> spatial_weights(const neighbourhood::Neighbourhoods& nbh) {
+  const std::size_t k = nbh.k;
+  std::vector<float> w(nbh.distances.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nbh.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const float reach = std::max(nbh.distances[i * k + k - 1], 1e-30f);
+      for (std::size_t m = 0; m < k; ++m) w[i * k + m] = std::exp(-std::pow(nbh.distances[i * k + m] / reach, 2.f));
+    }
+  });
+  return w;
+}
+
+/// The normal part of the bilateral weights: Tukey's biweight of t = 1 − |n_i·n_j|, zero from t = cutoff on.
+float normal_weight(const Vec3f& a, const Vec3f& b, float inv_cutoff) {
+  const float t = (1.f - std::abs(a.dot(b))) * inv_cutoff;
+  return t < 1.f ? (1.f - t * t) * (1.f - t * t) : 0.f;
+}
+
+/// One pass of bilateral normal filtering: each normal becomes the weighted mean of its own and its neighbours'
+/// (signs aligned to its own), normalised.
+std::vector<Vec3f> filter_normals(const std::vector<Vec3f>& normals, const neighbourhood::Neighbourhoods& nbh,
+                                  const std::vector<float>& spatial, float inv_cutoff) {
+  std::vector<Vec3f> out(normals.size());
+  const std::size_t k = nbh.k;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, normals.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        const Vec3f& ni = normals[i];
+                        Vec3f sum = ni;
+                        for (std::size_t m = 0; m < k; ++m) {
+                          const Vec3f& nj = normals[nbh.indices[i * k + m]];
+                          const float w = spatial[i * k + m] * normal_weight(ni, nj, inv_cutoff);
+                          sum += (nj.dot(ni) < 0 ? -w : w) * nj;
+                        }
+                        const float length = sum.norm();
+                        out[i] = length > 0 ? Vec3f(sum / length) : ni;
+                      }
+                    });
+  return out;
+}
+
+/// Moves each point towards the tangent planes of its neighbours (bilateral weights): the displacement is the
+/// weighted mean of ½ (n_j n_jᵀ + n_i n_iᵀ) (p_j − p_i), which at a crease only the point's own side contributes to.
+/// The neighbours' planes alone lift a point off a sphere of radius R by about d²/2R, its own plane through the
+/// neighbours lowers it by as much: their mean cancels the bias.
+std::vector<Vec3f> project_to_planes(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
+                                     const neighbourhood::Neighbourhoods& nbh, const std::vector<float>& spatial,
+                                     float inv_cutoff) {
+  std::vector<Vec3f> out(points.size());
+  const std::size_t k = nbh.k;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        Vec3f move = Vec3f::Zero();
+                        float total = 1.f;  // the point's own plane: zero displacement, damps sparse neighbourhoods
+                        for (std::size_t m = 0; m < k; ++m) {
+                          const std::uint32_t j = nbh.indices[i * k + m];
+                          const float w = spatial[i * k + m] * normal_weight(normals[i], normals[j], inv_cutoff);
+                          const Vec3f d = points[j] - points[i];
+                          move += 0.5f * w * (normals[j].dot(d) * normals[j] + normals[i].dot(d) * normals[i]);
+                          total += w;
+                        }
+                        out[i] = points[i] + move / total;
+                      }
+                    });
+  return out;
+}
+
+/// Distances of every list recomputed for the moved points and each list re-sorted (nearest first, ties by index).
+void refresh_distances(const std::vector<Vec3f>& points, neighbourhood::Neighbourhoods& nbh) {
+  const std::size_t k = nbh.k;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 512),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      thread_local std::vector<std::pair<float, std::uint32_t>> list;
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        list.clear();
+                        for (std::size_t m = 0; m < k; ++m) {
+                          const std::uint32_t j = nbh.indices[i * k + m];
+                          list.emplace_back((points[j] - points[i]).norm(), j);
+                        }
+                        std::sort(list.begin(), list.end());
+                        for (std::size_t m = 0; m < k; ++m) {
+                          nbh.distances[i * k + m] = list[m].first;
+                          nbh.indices[i * k + m] = list[m].second;
+                        }
+                      }
+                    });
+}
+
+/// `normals` after `passes` rounds of bilateral filtering with the spatial weights of this round.
+std::vector<Vec3f> filtered_normals(std::vector<Vec3f> normals, const neighbourhood::Neighbourhoods& nbh,
+                                    const std::vector<float>& spatial, const DenoiseOptions& options) {
+  for (std::size_t pass = 0; pass < options.normal_passes; ++pass)
+    normals = filter_normals(normals, nbh, spatial, 1.f / options.normal_cutoff);
+  return normals;
+}
+
+}  // namespace
+
+DenoiseResult denoise(std::vector<Vec3f>& points, neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
+                      const std::vector<Vec3f>& normals, const DenoiseOptions& options) {
+  detail::check_neighbourhoods("denoise", points.size(), neighbourhoods);
+  if (normals.size() != points.size())
+    throw Error("denoise: " + std::to_string(normals.size()) + " normals for " + std::to_string(points.size()) +
+                " points");
+  DenoiseResult result;
+  if (!options.enabled || neighbourhoods.k < 6 || !(spacing > 0)) return result;
+  result.noise_before = estimate_noise(points, normals, neighbourhoods);
+  if (!(result.noise_before > options.min_noise_factor * spacing)) return result;
+  const ProgressReporter report(options.progress, "denoise");
+  std::vector<float> spatial = spatial_weights(neighbourhoods);
+  for (std::size_t round = 0; round < options.iterations; ++round) {
+    report(static_cast<double>(round) / static_cast<double>(options.iterations));
+    // The first round filters the normals it was given; later ones the PCA normals of the moved points.
+    const std::vector<Vec3f> filtered = filtered_normals(
+        round == 0 ? normals : estimate_normals(points, neighbourhoods).normals, neighbourhoods, spatial, options);
+    points = project_to_planes(points, filtered, neighbourhoods, spatial, 1.f / options.normal_cutoff);
+    ++result.iterations;
+  }
+  // The moved points' distances (and so the spatial weights) change by about σ: refreshed once, at the end.
+  refresh_distances(points, neighbourhoods);
+  spatial = spatial_weights(neighbourhoods);
+  result.normals = filtered_normals(estimate_normals(points, neighbourhoods).normals, neighbourhoods, spatial, options);
+  result.applied = true;
+  report(1.0);
+  return result;
+}
+
+}  // namespace pcsketch::differential

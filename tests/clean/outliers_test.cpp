@@ -1,0 +1,99 @@
+// Known answers of the outlier stage: stray points and clumps added to analytic shapes are found, surface points
+// (also where the density falls 4:1) are kept.
+
+#include "pcsketch/clean/outliers.h"
+
+#include <gtest/gtest.h>
+
+#include "pcsketch/neighbourhood/kd_tree.h"
+#include "support/analytic_shapes.h"
+
+namespace pcsketch::clean {
+namespace {
+
+struct Count {
+  /// Stray points added, and how many of them were left out; the same for those farther than 4 m from every surface
+  /// point (m: the cloud's median mean distance to 8 neighbours). Nearer ones cannot be told from surface noise.
+  std::size_t outliers = 0, found = 0, far = 0, far_found = 0;
+  std::size_t surface = 0, lost = 0;     ///< surface points, and how many of them were left out
+};
+
+Count run(const PointCloud& cloud, const OutlierOptions& options = {}) {
+  const neighbourhood::KdTree tree(cloud.positions);
+  const neighbourhood::Neighbourhoods nbh = neighbourhood::compute_neighbourhoods(tree, cloud.positions);
+  const OutlierResult r = find_outliers(cloud.positions, nbh, options);
+  std::vector<Vec3f> surface;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (cloud.source_index.empty() || cloud.source_index[i] != test::kOutlier) surface.push_back(cloud.positions[i]);
+  const neighbourhood::KdTree surface_tree(surface);
+  std::vector<std::uint32_t> index;
+  std::vector<float> distance;
+  Count c;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const bool stray = !cloud.source_index.empty() && cloud.source_index[i] == test::kOutlier;
+    (stray ? c.outliers : c.surface) += 1;
+    (stray ? c.found : c.lost) += r.outlier[i];
+    if (!stray) continue;
+    surface_tree.knn(cloud.positions[i], 1, index, distance);
+    if (distance[0] <= 4 * r.median_distance) continue;
+    ++c.far;
+    c.far_found += r.outlier[i];
+  }
+  EXPECT_EQ(r.removed(), c.found + c.lost);
+  return c;
+}
+
+TEST(Outliers, CleanShapesLoseNoPoint) {
+  for (const PointCloud& shape : {test::sphere(1.f, {.n = 20000, .seed = 1}), test::cube(1.f, {.n = 20000, .seed = 2}),
+                                  test::torus(1.f, 0.3f, {.n = 20000, .seed = 3}),
+                                  test::plane(1.f, {.n = 5000, .seed = 4})}) {
+    const Count c = run(shape);
+    EXPECT_EQ(c.lost, 0u);
+  }
+}
+
+TEST(Outliers, OnePercentUniformStrayPointsAreLeftOut) {
+  for (PointCloud shape : {test::sphere(1.f, {.n = 20000, .seed = 5}), test::cube(1.f, {.n = 20000, .seed = 6}),
+                           test::torus(1.f, 0.3f, {.n = 20000, .seed = 7})}) {
+    test::add_outliers(shape, 0.01f);
+    const Count c = run(shape);
+    EXPECT_GE(static_cast<double>(c.far_found), 0.95 * static_cast<double>(c.far)) << c.far_found << "/" << c.far;
+    EXPECT_GE(static_cast<double>(c.found), 0.75 * static_cast<double>(c.outliers)) << c.found << "/" << c.outliers;
+    EXPECT_LE(static_cast<double>(c.lost), 0.005 * static_cast<double>(c.surface));
+  }
+}
+
+TEST(Outliers, TwoPercentInClumpsAreLeftOut) {
+  for (PointCloud shape : {test::sphere(1.f, {.n = 20000, .seed = 8}), test::cube(1.f, {.n = 20000, .seed = 9}),
+                           test::torus(1.f, 0.3f, {.n = 20000, .seed = 10})}) {
+    test::add_outliers(shape, 0.02f, 20);
+    const Count c = run(shape);
+    EXPECT_GE(static_cast<double>(c.far_found), 0.95 * static_cast<double>(c.far)) << c.far_found << "/" << c.far;
+    EXPECT_GE(static_cast<double>(c.found), 0.75 * static_cast<double>(c.outliers)) << c.found << "/" << c.outliers;
+    EXPECT_LE(static_cast<double>(c.lost), 0.005 * static_cast<double>(c.surface));
+  }
+}
+
+TEST(Outliers, FourToOneDensityAndNoisyPointsAreSurface) {
+  // Three quarters of the x > 0 half dropped: that half has a quarter of the density of the other.
+  const PointCloud dense = test::sphere(1.f, {.n = 40000, .seed = 11, .noise_sigma = 0.003f});
+  PointCloud uneven;
+  for (std::size_t i = 0; i < dense.size(); ++i)
+    if (dense.positions[i].x() <= 0 || i % 4 == 0) uneven.positions.push_back(dense.positions[i]);
+  EXPECT_EQ(run(uneven).lost, 0u);
+}
+
+TEST(Outliers, ASmallCloudIsItsOwnSurface) {
+  // Fewer points than the minimum cluster: the largest cluster is kept whatever its size.
+  const Count c = run(test::sphere(1.f, {.n = 20, .seed = 12}));
+  EXPECT_EQ(c.lost, 0u);
+}
+
+TEST(Outliers, OffKeepsEverything) {
+  PointCloud sphere = test::sphere(1.f, {.n = 5000, .seed = 13});
+  test::add_outliers(sphere, 0.05f);
+  EXPECT_EQ(run(sphere, {.enabled = false}).found, 0u);
+}
+
+}  // namespace
+}  // namespace pcsketch::clean

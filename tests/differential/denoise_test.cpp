@@ -1,0 +1,116 @@
+// Known answers of the noise stage: clean clouds are left alone, noisy spheres come back to their radius and their
+// curvature, noisy cubes keep their faces flat up to the edges.
+
+#include "pcsketch/differential/denoise.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "pcsketch/differential/surface.h"
+#include "support/analytic_shapes.h"
+
+namespace pcsketch::differential {
+namespace {
+
+/// A sphere of radius 1 and 20k points with Gaussian noise of `fraction` of its bounding-box diagonal.
+PointCloud noisy_sphere(float fraction, std::uint32_t seed) {
+  const float sigma = fraction * test::diagonal(test::sphere(1.f, {.n = 1000}));
+  PointCloud cloud = test::sphere(1.f, {.n = 20000, .seed = seed, .noise_sigma = sigma});
+  cloud.normals.clear();
+  return cloud;
+}
+
+double rms_radius_error(const PointCloud& cloud) {
+  double sum = 0;
+  for (const Vec3f& p : cloud.positions) sum += std::pow(p.norm() - 1.0, 2);
+  return std::sqrt(sum / static_cast<double>(cloud.size()));
+}
+
+/// Fraction of the points whose two principal curvatures are within `tolerance` of 1 (the unit sphere's).
+double curvature_within(const Surface& s, float tolerance) {
+  std::size_t good = 0;
+  for (std::size_t i = 0; i < s.curvature.k1.size(); ++i)
+    good += std::abs(s.curvature.k1[i] - 1.f) < tolerance && std::abs(s.curvature.k2[i] - 1.f) < tolerance;
+  return static_cast<double>(good) / static_cast<double>(s.curvature.k1.size());
+}
+
+TEST(Denoise, CleanCloudsAreNotMoved) {
+  for (PointCloud cloud : {test::sphere(1.f, {.n = 20000, .seed = 1}), test::cube(1.f, {.n = 20000, .seed = 2}),
+                           test::torus(1.f, 0.3f, {.n = 20000, .seed = 3})}) {
+    cloud.normals.clear();
+    PointCloud moved = cloud;
+    const Surface s = analyse_surface(moved, {.reorder = false});
+    EXPECT_FALSE(s.denoised) << "noise " << s.input_noise << ", h " << s.spacing;
+    EXPECT_LT(s.input_noise, 0.05f * s.spacing);
+    EXPECT_EQ(moved.positions, cloud.positions);
+  }
+}
+
+struct NoisySphere {
+  float fraction;             ///< noise σ, fraction of the diagonal
+  float curvature_tolerance;  ///< relative, at 90% of the points
+  float normal_degrees;       ///< normals within this of the radial direction at 95% of the points
+};
+
+class DenoiseSphere : public ::testing::TestWithParam<NoisySphere> {};
+
+TEST_P(DenoiseSphere, ComesBackToItsRadiusAndCurvature) {
+  const NoisySphere c = GetParam();
+  PointCloud cloud = noisy_sphere(c.fraction, 11);
+  const double before = rms_radius_error(cloud);
+  const Surface s = analyse_surface(cloud);
+  ASSERT_TRUE(s.denoised);
+  EXPECT_NEAR(s.input_noise, before, 0.25 * before);  // the estimate of σ
+  EXPECT_LT(rms_radius_error(cloud), 0.35 * before);
+  EXPECT_GE(curvature_within(s, c.curvature_tolerance), 0.90)
+      << "fit over " << s.curvature.fit_neighbours << " neighbours";
+  std::size_t radial = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    radial += cloud.normals[i].dot(cloud.positions[i].normalized()) > std::cos(c.normal_degrees * 3.14159265f / 180.f);
+  EXPECT_GE(static_cast<double>(radial), 0.95 * static_cast<double>(cloud.size()));
+}
+
+INSTANTIATE_TEST_SUITE_P(TwoNoiseLevels, DenoiseSphere,
+                         ::testing::Values(NoisySphere{0.001f, 0.10f, 3.f}, NoisySphere{0.003f, 0.20f, 6.f}));
+
+TEST(Denoise, NoisyCubeFacesStayFlatUpToTheEdges) {
+  const float sigma = 0.001f * 2.f * std::sqrt(3.f);  // 0.1% of the diagonal
+  PointCloud cube = test::cube(1.f, {.n = 30000, .seed = 7, .noise_sigma = sigma});
+  cube.normals.clear();
+  const Surface s = analyse_surface(cube);
+  ASSERT_TRUE(s.denoised);
+  // Distance of each point to the nearest face plane, for points 2h to 6h from every edge (the band a smoothing
+  // that rounds edges would pull inwards) and for points farther in.
+  double near_sum = 0, far_sum = 0;
+  std::size_t near_count = 0, far_count = 0;
+  for (const Vec3f& p : cube.positions) {
+    const Vec3f a = p.cwiseAbs();
+    Eigen::Index axis;
+    const float out = a.maxCoeff(&axis);
+    float edge = 1e9f;  // distance to the nearest edge of that face, in the face
+    for (int b = 0; b < 3; ++b)
+      if (b != axis) edge = std::min(edge, 1.f - a[b]);
+    const double offset = std::pow(out - 1.f, 2);
+    if (edge > 2 * s.spacing && edge < 6 * s.spacing) near_sum += offset, ++near_count;
+    if (edge >= 6 * s.spacing) far_sum += offset, ++far_count;
+  }
+  const double near_rms = std::sqrt(near_sum / static_cast<double>(near_count));
+  const double far_rms = std::sqrt(far_sum / static_cast<double>(far_count));
+  // The noise halves inside the faces and falls by a quarter next to the edges, whose normals the filter keeps apart
+  // (a smoothing that rounded the edges would pull those points inwards, by more than σ).
+  EXPECT_LT(near_rms, 0.75 * sigma);
+  EXPECT_LT(far_rms, 0.5 * sigma);
+}
+
+TEST(Denoise, OffLeavesTheNoise) {
+  PointCloud cloud = noisy_sphere(0.001f, 12);
+  const PointCloud before = cloud;
+  const Surface s = analyse_surface(cloud, {.denoise = {.enabled = false}, .reorder = false});
+  EXPECT_FALSE(s.denoised);
+  EXPECT_EQ(cloud.positions, before.positions);
+}
+
+}  // namespace
+}  // namespace pcsketch::differential

@@ -1,0 +1,118 @@
+// What scanners deliver, through the whole pipeline: noisy spheres drawn as their circle without speckle, and stray
+// points that neither move the frame nor get drawn.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "pcsketch/pipeline.h"
+#include "support/analytic_shapes.h"
+
+namespace pcsketch {
+namespace {
+
+/// Image position and radius (pixels) of the unit sphere's outline in the default orthographic view.
+struct Circle {
+  Vec2f centre;
+  float radius;
+  float distance(const Vec2f& p) const { return std::abs((p - centre).norm() - radius); }
+};
+
+Circle projected_unit_sphere(const Prepared& prepared, const view::CameraOptions& options) {
+  const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, options);
+  return {camera.project(Vec3f::Zero()).head<2>(), camera.scale};
+}
+
+float length_px(const Stroke& s) {
+  float total = 0;
+  for (std::size_t i = 1; i < s.image_points.size(); ++i) total += (s.image_points[i] - s.image_points[i - 1]).norm();
+  return total;
+}
+
+PointCloud unit_sphere(float noise_fraction, std::uint32_t seed) {
+  const float sigma = noise_fraction * test::diagonal(test::sphere(1.f, {.n = 1000}));
+  PointCloud cloud = test::sphere(1.f, {.n = 30000, .seed = seed, .noise_sigma = sigma});
+  cloud.normals.clear();
+  return cloud;
+}
+
+struct NoiseCase {
+  float fraction;      ///< noise σ, fraction of the diagonal
+  float tolerance_px;  ///< outline distance from the circle at 1024 px
+};
+
+class NoisySphereDrawing : public ::testing::TestWithParam<NoiseCase> {};
+
+TEST_P(NoisySphereDrawing, OutlineOnTheCircleAndNoSpeckle) {
+  const NoiseCase c = GetParam();
+  const DrawOptions options;
+  const Prepared prepared = prepare(unit_sphere(c.fraction, 3), options);
+  const DrawResult r = draw_view(prepared, options.camera, options);
+  const Circle circle = projected_unit_sphere(prepared, options.camera);
+  std::size_t on = 0, vertices = 0;
+  float circle_length = 0;
+  for (const Stroke& s : r.drawing.strokes) {
+    if (s.kind != LineKind::Contour || !s.visible) continue;
+    std::size_t near = 0;
+    for (const Vec2f& p : s.image_points) near += circle.distance(p) <= c.tolerance_px;
+    on += near, vertices += s.image_points.size();
+    // A stroke mostly off the circle is an interior contour: the sphere has none.
+    if (2 * near < s.image_points.size())
+      EXPECT_LE(length_px(s), 5.f) << "an interior contour of " << length_px(s) << " px";
+    else
+      circle_length += length_px(s);
+  }
+  ASSERT_GT(vertices, 0u);
+  EXPECT_GE(static_cast<double>(on), 0.97 * static_cast<double>(vertices));
+  EXPECT_GE(circle_length, 0.95f * 2.f * 3.14159265f * circle.radius);  // closed all round
+}
+
+INSTANTIATE_TEST_SUITE_P(TwoNoiseLevels, NoisySphereDrawing,
+                         ::testing::Values(NoiseCase{0.001f, 2.f}, NoiseCase{0.003f, 4.f}));
+
+struct OutlierCase {
+  float fraction;
+  std::size_t clump;
+};
+
+class SphereWithOutliers : public ::testing::TestWithParam<OutlierCase> {};
+
+TEST_P(SphereWithOutliers, FrameAndOutlineAsWithoutThem) {
+  const OutlierCase c = GetParam();
+  const DrawOptions options;
+  // 100k points: stray points within a few spacings of the surface cannot be told from it, and at this density that
+  // shell is thin enough not to move the frame.
+  PointCloud clean = test::sphere(1.f, {.n = 100000, .seed = 4});
+  clean.normals.clear();
+  PointCloud dirty = clean;
+  test::add_outliers(dirty, c.fraction, c.clump);
+  const Prepared reference = prepare(std::move(clean), options);
+  const Prepared prepared = prepare(std::move(dirty), options);
+  std::size_t left = 0;
+  for (const std::uint32_t s : prepared.cloud.source_index) left += s == test::kOutlier;
+  EXPECT_LE(static_cast<double>(left), 0.05 * c.fraction * 100000.0);
+  EXPECT_EQ(prepared.surface.outliers.size() + prepared.cloud.size(), 100000u + std::lround(c.fraction * 100000.f));
+
+  const Circle expected = projected_unit_sphere(reference, options.camera);
+  const Circle framed = projected_unit_sphere(prepared, options.camera);
+  EXPECT_NEAR(framed.radius, expected.radius, 0.01f * expected.radius);
+  EXPECT_LE((framed.centre - expected.centre).norm(), 0.01f * expected.radius);
+
+  const DrawResult r = draw_view(prepared, options.camera, options);
+  std::size_t on = 0, vertices = 0;
+  for (const Stroke& s : r.drawing.strokes) {
+    if (s.kind != LineKind::Contour || !s.visible) continue;
+    for (const Vec2f& p : s.image_points) on += framed.distance(p) <= 2.f;
+    vertices += s.image_points.size();
+  }
+  ASSERT_GT(vertices, 0u);
+  EXPECT_GE(static_cast<double>(on), 0.95 * static_cast<double>(vertices));
+}
+
+INSTANTIATE_TEST_SUITE_P(UniformAndClumps, SphereWithOutliers,
+                         ::testing::Values(OutlierCase{0.01f, 1}, OutlierCase{0.02f, 20}));
+
+}  // namespace
+}  // namespace pcsketch
