@@ -28,6 +28,7 @@ struct DrawArgs {
   std::string json;
   std::string stages;
   bool timings = false;
+  io::ReadOptions read;
   DrawOptions options;
 };
 
@@ -52,7 +53,7 @@ CLI::Option* add_vec3(CLI::App* cmd, const std::string& name, const std::string&
       name, [flag, set](const std::string& s) { set(parse_vec3(flag, s)); }, help);
 }
 
-void print_timings(const Timings& t, std::size_t points) {
+void print_timings(const Timings& t, std::size_t points, const std::string& reduction) {
   const auto paper = t.table_rows();
   std::printf("%-34s %10s  %s\n", "stage", "seconds", "(paper Table 2 row)");
   for (const auto& [name, seconds] : t.all_rows()) {
@@ -60,6 +61,7 @@ void print_timings(const Timings& t, std::size_t points) {
     std::printf("%-34.*s %10.4f  %s\n", static_cast<int>(name.size()), name.data(), seconds, in_paper ? "*" : "");
   }
   std::printf("%-34s %10zu\n", "points", points);
+  if (!reduction.empty()) std::printf("%-34s %s\n", "read: reduced", reduction.c_str());
 }
 
 void run_draw(DrawArgs& args, const GlobalOptions& global) {
@@ -74,7 +76,8 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
   options.progress = make_progress(global);
   Timings timings;
   auto start = Clock::now();
-  io::ReadResult read = io::read_point_cloud(args.input);
+  io::ReadResult read = io::read_point_cloud(args.input, args.read);
+  const std::string reduction = describe_reduction(read);
   timings.read = seconds_since(start);
   print_warnings(global, read.warnings);
 
@@ -108,7 +111,7 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
       render::write_drawings(stage.second, paths, options.render);
     });
   }
-  if (args.timings) print_timings(timings, prepared.cloud.size());
+  if (args.timings) print_timings(timings, prepared.cloud.size(), reduction);
 }
 
 }  // namespace
@@ -119,8 +122,9 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* cmd = app.add_subcommand(
       "draw", "Sketch drawing of a point cloud: contours, ridges, valleys, thickness, shadow hatching (paper Fig. 2)");
   cmd->fallthrough();  // the global flags (-q, --threads) may also follow the subcommand
-  cmd->add_option("INPUT", args->input, "Point cloud: PLY, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)")
+  cmd->add_option("INPUT", args->input, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)")
       ->required();
+  add_read_options(cmd, args->read);
   cmd->add_option("-o,--output", args->outputs, "Output file; format from the extension: .svg .png .pdf (repeatable)");
   cmd->add_option("--json", args->json, "Write every stroke as JSON (world and image coordinates, widths)");
   cmd->add_option("--stages", args->stages,
