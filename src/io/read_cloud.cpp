@@ -165,9 +165,10 @@ void filter(RawCloud& raw, ReadResult& result, const Source& source, const ReadO
            ((p.array() >= options.crop->min.array()).all() && (p.array() <= options.crop->max.array()).all());
   });
   result.dropped_by_filter = all - kept;
-  if (kept == 0)
-    source.fail(raw.format + ": none of the " + std::to_string(all) + " points is inside the crop box and of the " +
-                "classes asked for");
+  if (kept == 0) {
+    const char* by = !options.crop ? "class filters" : by_class ? "class filters and the crop box" : "crop box";
+    source.fail(raw.format + ": none of the " + std::to_string(all) + " points is left by the " + by);
+  }
 }
 
 // Normals must be unit length: a file whose normals are zero, not finite or not unit vectors (colours read as

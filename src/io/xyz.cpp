@@ -178,7 +178,7 @@ RawCloud parse_xyz(const Source& src, Want) {
   if (width == 0) return raw;
   if (layout.columns.empty()) {
     layout.columns = guess_columns(table, width, raw.format == "pts", src.path, raw.warnings);
-    layout.how = "guessed from the values";
+    layout.how = raw.format == "pts" ? "the PTS convention" : "guessed from the values";
   }
   gather(raw, layout, table, width);
   raw.columns = columns_to_string(layout.columns) + " (" + layout.how + ")";

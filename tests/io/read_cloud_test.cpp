@@ -42,6 +42,7 @@ TEST(ReadCloud, AttributesOfTheFixtures) {
   EXPECT_EQ(pts.cloud.colors.at(0), (Rgb8{255, 128, 0}));
   ASSERT_NE(pts.cloud.attribute("intensity"), nullptr);
   EXPECT_EQ(pts.cloud.attribute("intensity")->values.at(0), 17.f);
+  EXPECT_EQ(pts.columns, "x,y,z,i,r,g,b (the PTS convention)");
   const ReadResult csv = read_point_cloud(kOk + "points.csv");
   EXPECT_FALSE(csv.cloud.has_normals());
   ASSERT_NE(csv.cloud.attribute("intensity"), nullptr);
