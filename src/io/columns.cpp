@@ -51,20 +51,19 @@ bool has_xyz(std::span<const Column> columns) {
 
 std::vector<Column> parse_columns(std::string_view spec) {
   std::vector<Column> columns;
-  const FileLoc where{"--columns", {}, {}};
   while (!spec.empty()) {
     const std::size_t comma = spec.find(',');
     const std::string_view name = spec.substr(0, comma);
     spec = comma == std::string_view::npos ? std::string_view() : spec.substr(comma + 1);
     const std::optional<Column> c = detail::column_from_name(name);
     if (!c)
-      throw Error(where,
-                  "unknown column \"" + std::string(name.substr(0, 32)) + "\" (use x y z r g b i nx ny nz skip)");
+      throw Error("unknown column \"" + std::string(name.substr(0, 32)) +
+                  "\" in the column list (use x y z r g b i nx ny nz skip)");
     if (*c != Column::Skip && std::find(columns.begin(), columns.end(), *c) != columns.end())
-      throw Error(where, "column \"" + std::string(name) + "\" is named twice");
+      throw Error("column \"" + std::string(name.substr(0, 32)) + "\" is named twice in the column list");
     columns.push_back(*c);
   }
-  if (!has_xyz(columns)) throw Error(where, "the columns must include x, y and z");
+  if (!has_xyz(columns)) throw Error("the column list must include x, y and z");
   return columns;
 }
 
