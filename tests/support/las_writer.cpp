@@ -7,7 +7,8 @@ namespace pcsketch::test {
 namespace {
 
 void put(std::string& out, std::uint64_t value, std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) out += static_cast<char>((value >> (8 * i)) & 0xFFu);
+  // Fields wider than 8 bytes (GUID, counts by return) are written as zeros past the value's 8 bytes.
+  for (std::size_t i = 0; i < n; ++i) out += static_cast<char>(i < 8 ? (value >> (8 * i)) & 0xFFu : 0u);
 }
 void put_double(std::string& out, double v) {
   std::uint64_t bits = 0;
