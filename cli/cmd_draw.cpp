@@ -28,6 +28,7 @@ struct DrawArgs {
   std::string json;
   std::string stages;
   bool timings = false;
+  io::ReadOptions read;
   DrawOptions options;
 };
 
@@ -52,7 +53,7 @@ CLI::Option* add_vec3(CLI::App* cmd, const std::string& name, const std::string&
       name, [flag, set](const std::string& s) { set(parse_vec3(flag, s)); }, help);
 }
 
-void print_timings(const Timings& t, const Prepared& prepared) {
+void print_timings(const Timings& t, const Prepared& prepared, const std::string& reduction) {
   const auto paper = t.table_rows();
   std::printf("%-34s %10s  %s\n", "stage", "seconds", "(paper Table 2 row)");
   for (const auto& [name, seconds] : t.all_rows()) {
@@ -61,6 +62,7 @@ void print_timings(const Timings& t, const Prepared& prepared) {
   }
   const differential::Surface& s = prepared.surface;
   std::printf("%-34s %10zu\n", "points", prepared.cloud.size());
+  if (!reduction.empty()) std::printf("%-34s %s\n", "read: reduced", reduction.c_str());
   std::printf("%-34s %10zu  (%zu isolated, %zu in small clumps)\n", "outliers left out", s.outliers.size(),
               s.isolated_outliers, s.clustered_outliers);
   std::printf("%-34s %10.3g  (%s)\n", "noise sigma / h", s.spacing > 0 ? s.input_noise / s.spacing : 0.0,
@@ -79,7 +81,8 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
   options.progress = make_progress(global);
   Timings timings;
   auto start = Clock::now();
-  io::ReadResult read = io::read_point_cloud(args.input);
+  io::ReadResult read = io::read_point_cloud(args.input, args.read);
+  const std::string reduction = describe_reduction(read);
   timings.read = seconds_since(start);
   print_warnings(global, read.warnings);
 
@@ -113,7 +116,7 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
       render::write_drawings(stage.second, paths, options.render);
     });
   }
-  if (args.timings) print_timings(timings, prepared);
+  if (args.timings) print_timings(timings, prepared, reduction);
 }
 
 }  // namespace
@@ -124,8 +127,9 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* cmd = app.add_subcommand(
       "draw", "Sketch drawing of a point cloud: contours, ridges, valleys, thickness, shadow hatching (paper Fig. 2)");
   cmd->fallthrough();  // the global flags (-q, --threads) may also follow the subcommand
-  cmd->add_option("INPUT", args->input, "Point cloud: PLY, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)")
+  cmd->add_option("INPUT", args->input, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)")
       ->required();
+  add_read_options(cmd, args->read);
   cmd->add_option("-o,--output", args->outputs, "Output file; format from the extension: .svg .png .pdf (repeatable)");
   cmd->add_option("--json", args->json, "Write every stroke as JSON (world and image coordinates, widths)");
   cmd->add_option("--stages", args->stages,

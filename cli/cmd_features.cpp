@@ -24,6 +24,7 @@ struct FeaturesArgs {
   std::string in_path;
   std::string out_path;
   std::string lines_path;
+  io::ReadOptions read;
   differential::SurfaceOptions surface;
   features::RidgeValleyOptions features;
   bool ascii = false;
@@ -98,7 +99,7 @@ void write_lines_json(const std::string& path, const PointCloud& cloud, const di
 }
 
 void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
-  io::ReadResult read = io::read_point_cloud(args.in_path);
+  io::ReadResult read = io::read_point_cloud(args.in_path, args.read);
   print_warnings(global, read.warnings);
   PointCloud& cloud = read.cloud;
   differential::SurfaceOptions surface_options = args.surface;
@@ -153,7 +154,8 @@ void add_features_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<FeaturesArgs>();
   CLI::App* cmd = app.add_subcommand(
       "features", "Ridge/valley points and lines (paper IV.A): per-point k1, k2, label as PLY scalar fields, lines as JSON");
-  cmd->add_option("IN", args->in_path, "Point cloud: PLY, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ")->required();
+  cmd->add_option("IN", args->in_path, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ")->required();
+  add_read_options(cmd, args->read);
   cmd->add_option("-o,--output", args->out_path,
                   "Output PLY: x y z, nx ny nz, k1 k2 k_feature (float, 1/model units), label (uchar: 0 none, "
                   "1 ridge, 2 valley, 3 outlier left out of the analysis); every point of the input, in its order")

@@ -1,10 +1,13 @@
 // pcsketch info FILE: what a cloud holds, where it lies, its mean spacing h, and how long reading took.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <map>
 #include <string>
 
 #include "commands.h"
+#include "options.h"
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
 #include "pcsketch/neighbourhood/neighbourhoods.h"
@@ -22,6 +25,46 @@ struct InfoArgs {
   neighbourhood::NeighbourhoodOptions neighbourhoods{.k = 6};
 };
 
+// Smallest and largest of `values`.
+std::string range_of(const std::vector<float>& values) {
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  char text[64];
+  std::snprintf(text, sizeof text, "%g .. %g", static_cast<double>(*lo), static_cast<double>(*hi));
+  return text;
+}
+
+// "2: 1200 (60%), 6: 800 (40%)": how many points of each class, to choose --classes and --drop-classes.
+std::string histogram_of(const std::vector<float>& values) {
+  std::map<float, std::size_t> counts;
+  for (const float v : values) ++counts[v];
+  std::string out;
+  for (const auto& [value, count] : counts) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%s%g: %zu (%.1f%%)", out.empty() ? "" : ", ", static_cast<double>(value), count,
+                  100.0 * static_cast<double>(count) / static_cast<double>(values.size()));
+    out += text;
+  }
+  return out;
+}
+
+// One line per per-point array besides the positions, with its range.
+void print_attributes(const io::ReadResult& r) {
+  const PointCloud& cloud = r.cloud;
+  if (cloud.has_normals()) std::printf("  normals         unit vectors\n");
+  if (cloud.has_colors()) {
+    static constexpr const char* kChannel[] = {"red", "green", "blue"};
+    for (std::size_t c = 0; c < 3; ++c) {
+      std::vector<float> channel(cloud.size());
+      for (std::size_t i = 0; i < cloud.size(); ++i) channel[i] = cloud.colors[i][c];
+      std::printf("  %-15s %s\n", kChannel[c], range_of(channel).c_str());
+    }
+  }
+  for (const PointAttribute& a : cloud.attributes) {
+    const std::string text = a.name == "classification" ? histogram_of(a.values) : range_of(a.values);
+    std::printf("  %-15s %s\n", a.name.c_str(), text.c_str());
+  }
+}
+
 void run_info(const InfoArgs& args, const GlobalOptions& global) {
   const auto start = std::chrono::steady_clock::now();
   io::ReadResult r = io::read_point_cloud(args.path, args.read);
@@ -32,10 +75,9 @@ void run_info(const InfoArgs& args, const GlobalOptions& global) {
   std::string attributes = "x y z";
   if (cloud.has_normals()) attributes += ", normals";
   if (cloud.has_colors()) attributes += ", colours";
-  if (!r.other_attributes.empty()) {
-    attributes += "; not kept:";
-    for (const std::string& a : r.other_attributes) attributes += " " + a;
-  }
+  for (const PointAttribute& a : cloud.attributes) attributes += ", " + a.name;
+  std::string not_kept;
+  for (const std::string& a : r.other_attributes) not_kept += (not_kept.empty() ? "" : ", ") + a;
   const Box3f box = bounding_box(cloud.positions);
   const Vec3d lo = cloud.origin + box.min.cast<double>(), hi = cloud.origin + box.max.cast<double>();
 
@@ -50,7 +92,12 @@ void run_info(const InfoArgs& args, const GlobalOptions& global) {
   std::printf("format      %s\n", r.format.c_str());
   std::printf("points      %zu (%zu in the file, %zu dropped as non-finite)\n", cloud.size(), r.points_in_file,
               r.dropped_non_finite);
+  if (!r.columns.empty()) std::printf("columns     %s\n", r.columns.c_str());
   std::printf("attributes  %s\n", attributes.c_str());
+  print_attributes(r);
+  if (!not_kept.empty()) std::printf("not kept    %s\n", not_kept.c_str());
+  const std::string reduction = describe_reduction(r);
+  if (!reduction.empty()) std::printf("reduced     %s\n", reduction.c_str());
   std::printf("origin      %.6f %.6f %.6f\n", cloud.origin.x(), cloud.origin.y(), cloud.origin.z());
   std::printf("bbox min    %.6f %.6f %.6f\n", lo.x(), lo.y(), lo.z());
   std::printf("bbox max    %.6f %.6f %.6f\n", hi.x(), hi.y(), hi.z());
@@ -67,9 +114,10 @@ void run_info(const InfoArgs& args, const GlobalOptions& global) {
 
 void add_info_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<InfoArgs>();
-  CLI::App* cmd =
-      app.add_subcommand("info", "Point count, attributes, bounding box, mean spacing h, format, read time");
-  cmd->add_option("FILE", args->path, "Point cloud: PLY, XYZ/PTS/TXT/CSV/ASC, PCD, OFF or OBJ")->required();
+  CLI::App* cmd = app.add_subcommand(
+      "info", "Point count, attributes and their ranges, bounding box, mean spacing h, format, read time");
+  cmd->add_option("FILE", args->path, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV/ASC, PCD, OFF or OBJ")->required();
+  add_read_options(cmd, args->read);
   cmd->add_flag("!--no-recentre", args->read.recentre,
                 "Keep world coordinates as float positions instead of recentring far-away clouds on a double origin");
   cmd->add_option("--k", args->neighbourhoods.k, "Neighbours per point for the spacing estimate")

@@ -1,6 +1,13 @@
 #include "options.h"
 
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
 #include <optional>
+#include <sstream>
+
+#include "pcsketch/core/error.h"
 
 namespace pcsketch::cli {
 
@@ -20,7 +27,74 @@ CLI::Option* add_checked(CLI::App* cmd, const std::string& name, T& target, cons
   return option->check(check)->group(group);
 }
 
+// "xmin,ymin,zmin,xmax,ymax,zmax" → box; throws CLI::ValidationError (exit 1) otherwise.
+io::CropBox parse_crop(const std::string& text) {
+  std::istringstream in(text);
+  std::array<double, 6> v{};
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    char comma = ',';
+    if ((i > 0 && !(in >> comma)) || comma != ',' || !(in >> v[i]) || !std::isfinite(v[i]))
+      throw CLI::ValidationError("--crop", "expected six numbers xmin,ymin,zmin,xmax,ymax,zmax, got '" + text + "'");
+  }
+  if (!(in >> std::ws).eof())
+    throw CLI::ValidationError("--crop", "expected six numbers xmin,ymin,zmin,xmax,ymax,zmax, got '" + text + "'");
+  const io::CropBox box{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+  if ((box.min.array() > box.max.array()).any())
+    throw CLI::ValidationError("--crop", "each minimum must be at most its maximum, got '" + text + "'");
+  return box;
+}
+
 }  // namespace
+
+void add_read_options(CLI::App* cmd, io::ReadOptions& read) {
+  const std::string group = "Input";
+  cmd->add_option_function<std::string>(
+         "--columns",
+         [&read](const std::string& spec) {
+           try {
+             read.columns = io::parse_columns(spec);
+           } catch (const Error& e) {
+             throw CLI::ValidationError("--columns", e.what());
+           }
+         },
+         "Text files: what each column holds, e.g. x,y,z,r,g,b (names: x y z r g b i nx ny nz skip); default: "
+         "the header row, else guessed from the values")
+      ->group(group);
+  cmd->add_option("--classes", read.classes, "LAS: keep only these classifications, e.g. 2,6 (ground, building)")
+      ->delimiter(',')
+      ->check(CLI::Range(0, 255))
+      ->group(group);
+  cmd->add_option("--drop-classes", read.drop_classes, "LAS: remove these classifications, e.g. 7 (noise)")
+      ->delimiter(',')
+      ->check(CLI::Range(0, 255))
+      ->group(group);
+  cmd->add_option_function<std::string>(
+         "--crop", [&read](const std::string& s) { read.crop = parse_crop(s); },
+         "Keep only the points in this box, in the file's coordinates: xmin,ymin,zmin,xmax,ymax,zmax")
+      ->group(group);
+  cmd->add_option("--voxel", read.decimate.voxel,
+                  "Thin to one point per cube of this edge (model units), the one nearest its centre")
+      ->check(CLI::PositiveNumber)
+      ->group(group);
+  cmd->add_option("--max-points", read.decimate.max_points,
+                  "Thin to at most this many points with the smallest voxel that gets there (at least 8)")
+      ->check(CLI::Range(std::size_t{8}, std::numeric_limits<std::size_t>::max()))
+      ->group(group);
+}
+
+std::string describe_reduction(const io::ReadResult& read) {
+  std::string out;
+  if (read.dropped_by_filter > 0)
+    out += std::to_string(read.dropped_by_filter) + " outside the crop box or of classes not kept";
+  if (read.decimation) {
+    const io::DecimateReport& d = *read.decimation;
+    char text[160];
+    std::snprintf(text, sizeof text, "voxel thinning %zu -> %zu points (cell %.6g, %.3f s)", d.points_before,
+                  d.points_after, d.cell, d.seconds);
+    out += (out.empty() ? "" : "; ") + std::string(text);
+  }
+  return out;
+}
 
 void add_surface_options(CLI::App* cmd, differential::SurfaceOptions& surface) {
   const std::string group = "Surface analysis";

@@ -9,6 +9,7 @@
 
 #include "pcsketch/differential/surface.h"
 #include "pcsketch/features/ridge_valley_lines.h"
+#include "pcsketch/io/read_cloud.h"
 
 namespace pcsketch::cli {
 
@@ -24,6 +25,13 @@ CLI::Option* add_enum(CLI::App* cmd, const std::string& name, Enum& target, cons
           name, [&target, names](const std::string& s) { target = names.at(s); }, help)
       ->check(CLI::IsMember(keys));
 }
+
+/// Input flags (--columns, --classes, --drop-classes, --crop, --voxel, --max-points) bound to `read`, which must
+/// outlive the parse.
+void add_read_options(CLI::App* cmd, io::ReadOptions& read);
+
+/// One line for --timings and info: what cropping, class filters and thinning left of the file's points.
+std::string describe_reduction(const io::ReadResult& read);
 
 /// Surface analysis flags (--neighbours, --recompute-normals, --orientation, --outward) bound to `surface`, which
 /// must outlive the parse.

@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
 build="${FUZZ_BUILD_DIR:-build/fuzz}"
-targets=(fuzz_read_ply fuzz_read_xyz fuzz_read_other)
+targets=(fuzz_read_ply fuzz_read_las fuzz_read_xyz fuzz_read_other)
 
 cmake --preset fuzz -B "$build"
 cmake --build "$build" --target "${targets[@]}" -j2

@@ -34,10 +34,16 @@ void select(PointCloud& cloud, const std::vector<std::uint32_t>& order) {
     cloud.source_index.resize(cloud.size());
     std::iota(cloud.source_index.begin(), cloud.source_index.end(), 0u);
   }
-  apply_order(cloud.positions, order);
-  apply_order(cloud.normals, order);
-  apply_order(cloud.colors, order);
-  apply_order(cloud.source_index, order);
+  keep_points(cloud, order);
+}
+
+void keep_points(PointCloud& cloud, const std::vector<std::uint32_t>& kept) {
+  PCS_ASSERT(kept.size() <= cloud.size(), "cannot keep more points than the cloud holds");
+  apply_order(cloud.positions, kept);
+  apply_order(cloud.normals, kept);
+  apply_order(cloud.colors, kept);
+  for (PointAttribute& a : cloud.attributes) apply_order(a.values, kept);
+  apply_order(cloud.source_index, kept);
 }
 
 std::string_view to_string(LineKind kind) {

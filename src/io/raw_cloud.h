@@ -19,6 +19,7 @@ namespace pcsketch::io::detail {
 struct Source {
   std::string_view bytes;
   const std::string& path;
+  std::span<const Column> columns = {};  ///< text formats: ReadOptions::columns
 
   [[noreturn]] void fail_at_byte(std::size_t offset, const std::string& message) const {
     throw Error(FileLoc{path, {}, offset}, message);
@@ -34,9 +35,12 @@ struct RawCloud {
   std::vector<Vec3d> positions;
   std::vector<Vec3f> normals;                       ///< empty or #P
   std::vector<Rgb8> colors;                         ///< empty or #P
+  std::vector<PointAttribute> attributes;           ///< each #P
   std::vector<std::array<std::uint32_t, 3>> faces;  ///< filled only when a mesh is asked for
   std::vector<std::string> other_attributes;
   std::string format;
+  std::string columns;  ///< text formats: the column layout and how it was found
+  Warnings warnings;  ///< what the reader assumed (a guessed column layout)
 };
 
 /// What a reader is asked for: the points only, or the faces too.
@@ -48,6 +52,7 @@ RawCloud parse_xyz(const Source& source, Want want);
 RawCloud parse_pcd(const Source& source, Want want);
 RawCloud parse_off(const Source& source, Want want);
 RawCloud parse_obj(const Source& source, Want want);
+RawCloud parse_las(const Source& source, Want want);
 
 /// A colour channel from a number in [0, 255] (rounded, clamped; non-finite gives 0).
 inline std::uint8_t to_channel(double v) {

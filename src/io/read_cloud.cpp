@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "io/columns.h"
 #include "io/mapped_file.h"
 #include "io/raw_cloud.h"
 
@@ -14,6 +15,8 @@ namespace {
 using detail::RawCloud;
 using detail::Source;
 using detail::Want;
+
+bool sniff_las(std::string_view head) { return head.starts_with("LASF"); }
 
 bool sniff_ply(std::string_view head) { return head.starts_with("ply\n") || head.starts_with("ply\r\n"); }
 
@@ -46,6 +49,7 @@ struct Reader {
 // The dispatch table: magic first (a PLY named .xyz is still read as PLY), then extension.
 constexpr std::array kReaders{
     Reader{"PLY", {".ply"}, sniff_ply, detail::parse_ply, true},
+    Reader{"LAS", {".las", ".laz"}, sniff_las, detail::parse_las, false},
     Reader{"OFF", {".off"}, sniff_off, detail::parse_off, true},
     Reader{"PCD", {".pcd"}, sniff_pcd, detail::parse_pcd, false},
     Reader{"OBJ", {".obj"}, nullptr, detail::parse_obj, true},
@@ -81,7 +85,7 @@ const Reader& choose_reader(const Source& source) {
           0, std::string(r.name) + ": wrong magic: the file starts with \"" + printable_head(source.bytes) + "\"");
     return r;
   }
-  source.fail("unknown format: extension \"" + ext + "\" is none of .ply .off .pcd .obj .xyz .pts .txt .csv .asc" +
+  source.fail("unknown format: extension \"" + ext + "\" is none of .ply .las .off .pcd .obj .xyz .pts .txt .csv .asc" +
               " and the first bytes \"" + printable_head(source.bytes) + "\" are no known magic");
 }
 
@@ -106,57 +110,110 @@ std::vector<Vec3f> relative(const std::vector<Vec3d>& positions, const Vec3d& or
   return out;
 }
 
-ReadResult finish_points(RawCloud&& raw, const Source& source, const ReadOptions& options) {
-  ReadResult result;
-  result.format = std::move(raw.format);
-  result.other_attributes = std::move(raw.other_attributes);
-  result.points_in_file = raw.positions.size();
-  if (!options.keep_normals) raw.normals.clear();
-  if (!options.keep_colors) raw.colors.clear();
-
-  // Compact finite points in place, keeping the per-point arrays aligned.
+// Keeps the points `keep(i)` says, in place, with every per-point array aligned; returns how many were kept.
+template <class Keep>
+std::size_t compact(RawCloud& raw, Keep keep) {
   std::size_t kept = 0;
   for (std::size_t i = 0; i < raw.positions.size(); ++i) {
-    if (!raw.positions[i].allFinite()) continue;
+    if (!keep(i)) continue;
     raw.positions[kept] = raw.positions[i];
     if (!raw.normals.empty()) raw.normals[kept] = raw.normals[i];
     if (!raw.colors.empty()) raw.colors[kept] = raw.colors[i];
+    for (PointAttribute& a : raw.attributes) a.values[kept] = a.values[i];
     ++kept;
   }
-  result.dropped_non_finite = raw.positions.size() - kept;
-  if (kept == 0) {
-    if (raw.positions.empty()) source.fail(result.format + ": the file holds no points");
-    source.fail(result.format + ": all " + std::to_string(raw.positions.size()) +
-                " points have a NaN or infinite coordinate");
-  }
-  if (result.dropped_non_finite > 0)
-    result.warnings.push_back(source.path + ": dropped " + std::to_string(result.dropped_non_finite) + " of " +
-                              std::to_string(raw.positions.size()) + " points with a NaN or infinite coordinate");
   raw.positions.resize(kept);
   if (!raw.normals.empty()) raw.normals.resize(kept);
   if (!raw.colors.empty()) raw.colors.resize(kept);
+  for (PointAttribute& a : raw.attributes) a.values.resize(kept);
+  return kept;
+}
 
-  // Normals must be unit length; a file with unusable ones is treated as having none.
-  std::size_t bad_normals = 0;
-  for (Vec3f& n : raw.normals) {
-    const float len = n.norm();
-    if (std::isfinite(len) && len > 0.f) {
-      n /= len;
-    } else {
-      ++bad_normals;
+void drop_non_finite(RawCloud& raw, ReadResult& result, const Source& source) {
+  const std::size_t all = raw.positions.size();
+  if (all == 0) source.fail(raw.format + ": the file holds no points");
+  const std::size_t kept = compact(raw, [&](std::size_t i) { return raw.positions[i].allFinite(); });
+  result.dropped_non_finite = all - kept;
+  if (kept == 0) source.fail(raw.format + ": all " + std::to_string(all) + " points have a NaN or infinite coordinate");
+  if (result.dropped_non_finite > 0)
+    result.warnings.push_back(source.path + ": dropped " + std::to_string(result.dropped_non_finite) + " of " +
+                              std::to_string(all) + " points with a NaN or infinite coordinate");
+}
+
+bool listed(const std::vector<int>& classes, float value) {
+  return std::find(classes.begin(), classes.end(), static_cast<int>(value)) != classes.end();
+}
+
+// --classes, --drop-classes and --crop, all in one pass over the file's own coordinates.
+void filter(RawCloud& raw, ReadResult& result, const Source& source, const ReadOptions& options) {
+  const bool by_class = !options.classes.empty() || !options.drop_classes.empty();
+  if (!by_class && !options.crop) return;
+  const PointAttribute* classification = nullptr;
+  for (const PointAttribute& a : raw.attributes)
+    if (a.name == "classification") classification = &a;
+  if (by_class && classification == nullptr)
+    source.fail(raw.format + ": the file has no classification to keep or drop classes by (LAS files have one)");
+  const std::size_t all = raw.positions.size();
+  const std::size_t kept = compact(raw, [&](std::size_t i) {
+    if (by_class) {
+      const float c = classification->values[i];
+      if (!options.classes.empty() && !listed(options.classes, c)) return false;
+      if (listed(options.drop_classes, c)) return false;
     }
+    const Vec3d& p = raw.positions[i];
+    return !options.crop ||
+           ((p.array() >= options.crop->min.array()).all() && (p.array() <= options.crop->max.array()).all());
+  });
+  result.dropped_by_filter = all - kept;
+  if (kept == 0) {
+    const char* by = !options.crop ? "class filters" : by_class ? "class filters and the crop box" : "crop box";
+    source.fail(raw.format + ": none of the " + std::to_string(all) + " points is left by the " + by);
   }
-  if (bad_normals > 0) {
-    result.warnings.push_back(source.path + ": " + std::to_string(bad_normals) +
+}
+
+// Normals must be unit length: a file whose normals are zero, not finite or not unit vectors (colours read as
+// normals, unnormalised exports) is treated as having none, and the pipeline estimates them.
+void check_normals(RawCloud& raw, ReadResult& result, const Source& source) {
+  if (raw.normals.empty()) return;
+  std::size_t bad = 0;
+  for (const Vec3f& n : raw.normals) bad += !(n.allFinite() && n.norm() > 0.f);
+  if (bad > 0) {
+    result.warnings.push_back(source.path + ": " + std::to_string(bad) +
                               " normals are zero or not finite; normals ignored");
     raw.normals.clear();
+    return;
   }
+  const double unit = detail::unit_fraction(raw.normals);
+  if (unit < detail::kUnitShare) {
+    result.warnings.push_back(source.path + ": the file's normals are not unit vectors (only " +
+                              std::to_string(static_cast<int>(unit * 100.0)) +
+                              "% are); they are recomputed from the points");
+    raw.normals.clear();
+    return;
+  }
+  for (Vec3f& n : raw.normals) n.normalize();
+}
+
+ReadResult finish_points(RawCloud&& raw, const Source& source, const ReadOptions& options) {
+  ReadResult result;
+  result.points_in_file = raw.positions.size();
+  result.warnings = std::move(raw.warnings);
+  if (!options.keep_normals) raw.normals.clear();
+  if (!options.keep_colors) raw.colors.clear();
+  drop_non_finite(raw, result, source);
+  filter(raw, result, source, options);
+  check_normals(raw, result, source);
 
   PointCloud& cloud = result.cloud;
   cloud.origin = choose_origin(raw.positions, options);
   cloud.positions = relative(raw.positions, cloud.origin);
   cloud.normals = std::move(raw.normals);
   cloud.colors = std::move(raw.colors);
+  cloud.attributes = std::move(raw.attributes);
+  result.format = std::move(raw.format);
+  result.columns = std::move(raw.columns);
+  result.other_attributes = std::move(raw.other_attributes);
+  if (options.decimate.active()) result.decimation = decimate(cloud, options.decimate);
   return result;
 }
 
@@ -184,12 +241,12 @@ Mesh read_faces(const Source& source, const ReadOptions& options) {
 
 ReadResult read_point_cloud(const std::string& path, const ReadOptions& options) {
   const detail::MappedFile file(path);
-  return read_points(Source{file.bytes(), path}, options);
+  return read_points(Source{file.bytes(), path, options.columns}, options);
 }
 
 ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::string& name_hint,
                                         const ReadOptions& options) {
-  return read_points(Source{bytes, name_hint}, options);
+  return read_points(Source{bytes, name_hint, options.columns}, options);
 }
 
 Mesh read_mesh(const std::string& path, const ReadOptions& options) {

@@ -4,17 +4,16 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <optional>
 
+#include "io/columns.h"
 #include "io/raw_cloud.h"
 #include "io/text_scan.h"
 
 namespace pcsketch::io::detail {
 namespace {
 
-constexpr int kNone = -1;
-/// Column of each slot: 0-2 position, 3-5 normal, 6-8 colour.
-using Columns = std::array<int, 9>;
+/// Columns read when guessing the layout: x y z and two groups of three (normals, colours).
+constexpr std::size_t kGuessWidth = 9;
 
 bool is_comment_or_blank(std::string_view line) {
   // Separators alone (e.g. ",,," in a spreadsheet export) make a blank line too.
@@ -30,60 +29,89 @@ std::vector<std::string_view> split(std::string_view line) {
   return out;
 }
 
-// A header line names the columns (CSV exports): x y z, nx ny nz or normal_x …, red green blue or r g b.
-Columns columns_from_names(const std::vector<std::string_view>& names, std::vector<std::string>& others) {
-  static constexpr std::array<std::array<std::string_view, 3>, 9> kNames{{{"x", "", ""},
-                                                                          {"y", "", ""},
-                                                                          {"z", "", ""},
-                                                                          {"nx", "normal_x", ""},
-                                                                          {"ny", "normal_y", ""},
-                                                                          {"nz", "normal_z", ""},
-                                                                          {"red", "r", ""},
-                                                                          {"green", "g", ""},
-                                                                          {"blue", "b", ""}}};
-  Columns columns;
-  columns.fill(kNone);
-  for (std::size_t c = 0; c < names.size(); ++c) {
-    std::string lower(names[c]);
-    std::transform(lower.begin(), lower.end(), lower.begin(),
-                   [](char ch) { return static_cast<char>(std::tolower(ch)); });
-    bool used = false;
-    for (std::size_t s = 0; s < kNames.size(); ++s)
-      if (columns[s] == kNone && !lower.empty() &&
-          std::find(kNames[s].begin(), kNames[s].end(), lower) != kNames[s].end()) {
-        columns[s] = static_cast<int>(c);
-        used = true;
-      }
-    if (!used) others.push_back(std::string(names[c]));
-  }
-  return columns;
+// The layout as read: what each column holds, and the names of a header row (for the columns not kept).
+struct Layout {
+  std::vector<Column> columns;  ///< empty until known
+  std::vector<std::string> names;
+  std::string how;  ///< "--columns", "header" or "guessed from the values"
+};
+
+// A header row (CloudCompare's "//X,Y,Z,R,G,B", a CSV's "X","Y","Z" first line, "# x y z nx ny nz"): true if it
+// names x, y and z.
+bool read_header(std::string_view line, Layout& layout) {
+  const std::vector<std::string_view> names = split(line);
+  const std::optional<std::vector<Column>> columns = columns_from_header(names);
+  if (!columns) return false;
+  layout.columns = *columns;
+  layout.names.assign(names.begin(), names.end());
+  layout.how = "header";
+  return true;
 }
 
-// Without a header: x y z, then nx ny nz from 6 columns and red green blue from 9; PTS: x y z intensity [r g b].
-Columns columns_from_count(std::size_t count, bool pts, std::vector<std::string>& others) {
-  Columns columns;
-  columns.fill(kNone);
-  for (int s = 0; s < 3; ++s) columns[s] = s;
-  std::size_t used = 3;
-  if (pts && count >= 4) {
-    others.push_back("intensity");
-    used = 4;
-    if (count >= 7) {
-      for (int s = 6; s < 9; ++s) columns[s] = s - 2;
-      used = 7;
-    }
-  } else {
-    if (count >= 6) {
-      for (int s = 3; s < 6; ++s) columns[s] = s;
-      used = 6;
-    }
-    if (count >= 9) {
-      for (int s = 6; s < 9; ++s) columns[s] = s;
-      used = 9;
-    }
+float column_value(const std::vector<float>& table, std::size_t width, std::size_t row, std::size_t column) {
+  return table[row * width + column];
+}
+
+// Normals, colours and intensity from the columns that hold them; the rest is listed as not kept.
+void gather(RawCloud& raw, const Layout& layout, const std::vector<float>& table, std::size_t width) {
+  const auto find = [&](Column c) {
+    const auto it = std::find(layout.columns.begin(), layout.columns.end(), c);
+    return it == layout.columns.end() ? width : static_cast<std::size_t>(it - layout.columns.begin());
+  };
+  const std::size_t rows = raw.positions.size();
+  const std::array<std::size_t, 3> n{find(Column::Nx), find(Column::Ny), find(Column::Nz)};
+  const std::array<std::size_t, 3> rgb{find(Column::Red), find(Column::Green), find(Column::Blue)};
+  const bool has_normals = n[0] < width && n[1] < width && n[2] < width;
+  const bool has_colors = rgb[0] < width && rgb[1] < width && rgb[2] < width;
+  if (has_normals)
+    for (std::size_t r = 0; r < rows; ++r)
+      raw.normals.emplace_back(column_value(table, width, r, n[0]), column_value(table, width, r, n[1]),
+                               column_value(table, width, r, n[2]));
+  if (has_colors) {
+    // Colours in [0, 1] with a fraction somewhere are scaled to 0-255; whole numbers are taken as 0-255.
+    bool unit_range = true, whole = true;
+    for (std::size_t r = 0; r < rows; ++r)
+      for (const std::size_t c : rgb) {
+        const float v = column_value(table, width, r, c);
+        unit_range = unit_range && v >= 0.f && v <= 1.f;
+        whole = whole && v == std::floor(v);
+      }
+    const double scale = unit_range && !whole ? 255.0 : 1.0;
+    for (std::size_t r = 0; r < rows; ++r)
+      raw.colors.push_back({to_channel(scale * column_value(table, width, r, rgb[0])),
+                            to_channel(scale * column_value(table, width, r, rgb[1])),
+                            to_channel(scale * column_value(table, width, r, rgb[2]))});
   }
-  for (std::size_t c = used; c < count; ++c) others.push_back("column " + std::to_string(c + 1));
-  return columns;
+  for (std::size_t c = 0; c < width; ++c) {
+    const Column kind = layout.columns[c];
+    if (kind == Column::Intensity) {
+      PointAttribute& a = raw.attributes.emplace_back(PointAttribute{"intensity", {}});
+      for (std::size_t r = 0; r < rows; ++r) a.values.push_back(column_value(table, width, r, c));
+      continue;
+    }
+    const bool kept = kind == Column::X || kind == Column::Y || kind == Column::Z ||
+                      (has_normals && (kind == Column::Nx || kind == Column::Ny || kind == Column::Nz)) ||
+                      (has_colors && (kind == Column::Red || kind == Column::Green || kind == Column::Blue));
+    if (!kept)
+      raw.other_attributes.push_back(c < layout.names.size() ? layout.names[c] : "column " + std::to_string(c + 1));
+  }
+}
+
+// The columns read from each line, fixed by the first data line: the layout's, or up to kGuessWidth to guess from.
+// `xyz` gets the columns of x, y and z.
+std::size_t table_width(std::string_view line, const Layout& layout, const Source& src, std::uint64_t line_number,
+                        std::vector<std::string>& not_kept, std::array<std::size_t, 3>& xyz) {
+  if (!layout.columns.empty()) {
+    for (std::size_t s = 0; s < 3; ++s)
+      xyz[s] = static_cast<std::size_t>(
+          std::find(layout.columns.begin(), layout.columns.end(), static_cast<Column>(s)) - layout.columns.begin());
+    return layout.columns.size();
+  }
+  const std::size_t line_width = split(line).size();
+  if (line_width < 3)
+    src.fail_at_line(line_number, "XYZ: too few columns (" + std::to_string(line_width) + "; need x y z)");
+  for (std::size_t c = kGuessWidth; c < line_width; ++c) not_kept.push_back("column " + std::to_string(c + 1));
+  return std::min(line_width, kGuessWidth);
 }
 
 }  // namespace
@@ -94,16 +122,22 @@ RawCloud parse_xyz(const Source& src, Want) {
   RawCloud raw;
   raw.format = ext.size() > 1 ? ext.substr(1) : "xyz";
 
+  Layout layout{{src.columns.begin(), src.columns.end()}, {}, src.columns.empty() ? "" : "--columns"};
   LineReader lines(src.bytes);
   std::string_view line;
-  std::optional<Columns> columns;
   bool first_data_line = true;
-  int needed = 0;  // columns a line must have
-  std::vector<int> slot_of_column;
-  bool has_normals = false, has_colors = false;
-  std::array<double, 9> v{};
+  std::size_t width = 0;  // columns read from each line
+  std::array<std::size_t, 3> xyz{0, 1, 2};
+  std::vector<float> table;  // #P by width: every column read, as float (positions are kept in double apart)
   while (lines.next(line)) {
-    if (is_comment_or_blank(line)) continue;
+    if (is_comment_or_blank(line)) {
+      // A header may hide in a comment: CloudCompare writes "//X,Y,Z,R,G,B".
+      if (first_data_line && layout.columns.empty()) {
+        const std::size_t start = line.find_first_not_of(" \t#/");
+        if (start != std::string_view::npos) read_header(line.substr(start), layout);
+      }
+      continue;
+    }
     if (first_data_line) {
       first_data_line = false;
       const std::vector<std::string_view> tokens = split(line);
@@ -111,42 +145,43 @@ RawCloud parse_xyz(const Source& src, Want) {
       std::uint64_t count = 0;
       if (tokens.size() == 1 && parse_uint(tokens[0], count)) continue;  // the PTS count line: a hint only
       if (!parse_double(tokens[0], unused)) {
-        columns = columns_from_names(tokens, raw.other_attributes);
-        if ((*columns)[0] == kNone || (*columns)[1] == kNone || (*columns)[2] == kNone)
+        // With --columns, a header row is skipped; without, it must name x, y and z.
+        if (!src.columns.empty()) continue;
+        if (!read_header(line, layout))
           src.fail_at_line(lines.line(), "XYZ: non-numeric first line is not a header naming x, y and z columns");
         continue;
       }
     }
-    if (!columns) {
-      const std::size_t count = split(line).size();
-      if (count < 3) src.fail_at_line(lines.line(), "XYZ: too few columns (" + std::to_string(count) + "; need x y z)");
-      columns = columns_from_count(count, raw.format == "pts", raw.other_attributes);
-    }
-    if (needed == 0) {
-      has_normals = (*columns)[3] != kNone && (*columns)[4] != kNone && (*columns)[5] != kNone;
-      has_colors = (*columns)[6] != kNone && (*columns)[7] != kNone && (*columns)[8] != kNone;
-      for (int s = 0; s < 9; ++s)
-        if (s < 3 || (s < 6 ? has_normals : has_colors)) needed = std::max(needed, (*columns)[s] + 1);
-      slot_of_column.assign(needed, kNone);
-      for (int s = 0; s < 9; ++s)
-        if ((*columns)[s] != kNone && (*columns)[s] < needed) slot_of_column[(*columns)[s]] = s;
-    }
-    // Column c of this line goes to the slot that reads it.
+    if (width == 0) width = table_width(line, layout, src, lines.line(), raw.other_attributes, xyz);
+    // Column c of this line: a position in double, anything else into the table as float.
     Tokens tokens(line, true);
     std::string_view token;
-    for (int c = 0; c < needed; ++c) {
+    Vec3d p = Vec3d::Zero();
+    for (std::size_t c = 0; c < width; ++c) {
       if (!tokens.next(token))
         src.fail_at_line(lines.line(),
-                         "XYZ: too few columns (" + std::to_string(c) + "; need " + std::to_string(needed) + ")");
-      if (slot_of_column[c] == kNone) continue;
-      if (!parse_double(token, v[slot_of_column[c]]))
+                         "XYZ: too few columns (" + std::to_string(c) + "; need " + std::to_string(width) + ")");
+      double v = 0;
+      if (!layout.columns.empty() && layout.columns[c] == Column::Skip) {
+        table.push_back(0.f);
+        continue;
+      }
+      if (!parse_double(token, v))
         src.fail_at_line(lines.line(), "XYZ: non-numeric value \"" + std::string(token.substr(0, 32)) +
                                            "\" in column " + std::to_string(c + 1));
+      table.push_back(static_cast<float>(v));
+      for (std::size_t s = 0; s < 3; ++s)
+        if (xyz[s] == c) p[static_cast<Eigen::Index>(s)] = v;
     }
-    raw.positions.emplace_back(v[0], v[1], v[2]);
-    if (has_normals) raw.normals.emplace_back(float(v[3]), float(v[4]), float(v[5]));
-    if (has_colors) raw.colors.push_back({to_channel(v[6]), to_channel(v[7]), to_channel(v[8])});
+    raw.positions.push_back(p);
   }
+  if (width == 0) return raw;
+  if (layout.columns.empty()) {
+    layout.columns = guess_columns(table, width, raw.format == "pts", src.path, raw.warnings);
+    layout.how = raw.format == "pts" ? "the PTS convention" : "guessed from the values";
+  }
+  gather(raw, layout, table, width);
+  raw.columns = columns_to_string(layout.columns) + " (" + layout.how + ")";
   return raw;
 }
 

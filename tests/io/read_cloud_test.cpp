@@ -11,6 +11,8 @@
 namespace pcsketch::io {
 namespace {
 
+using test::error_of;
+
 const std::string kOk = std::string(PCSKETCH_FIXTURES) + "/ok/";
 const std::string kBad = std::string(PCSKETCH_FIXTURES) + "/malformed/";
 
@@ -21,21 +23,9 @@ void expect_five(const ReadResult& r) {
   for (std::size_t i = 0; i < kFive.size(); ++i) EXPECT_EQ(r.cloud.world(i), kFive[i]) << i;
 }
 
-/// The message of the pcsketch::Error `f` throws ("" and a test failure if it throws none).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no pcsketch::Error thrown";
-  return "";
-}
-
 TEST(ReadCloud, EveryOkFixtureReadsTheSameFivePoints) {
   for (const char* name : {"tiny_ascii.ply", "tiny_binary_le.ply", "tiny_binary_be.ply", "points.xyz", "points.pts",
-                           "points.csv", "points_ascii.pcd", "points_binary.pcd"}) {
+                           "points.csv", "points_ascii.pcd", "points_binary.pcd", "points.las", "points_14.las"}) {
     SCOPED_TRACE(name);
     expect_five(read_point_cloud(kOk + name));
   }
@@ -50,10 +40,19 @@ TEST(ReadCloud, AttributesOfTheFixtures) {
   EXPECT_EQ(xyz.cloud.normals.at(2), Vec3f(0, 0, 1));
   const ReadResult pts = read_point_cloud(kOk + "points.pts");
   EXPECT_EQ(pts.cloud.colors.at(0), (Rgb8{255, 128, 0}));
-  EXPECT_EQ(pts.other_attributes, std::vector<std::string>{"intensity"});
+  ASSERT_NE(pts.cloud.attribute("intensity"), nullptr);
+  EXPECT_EQ(pts.cloud.attribute("intensity")->values.at(0), 17.f);
+  EXPECT_EQ(pts.columns, "x,y,z,i,r,g,b (the PTS convention)");
   const ReadResult csv = read_point_cloud(kOk + "points.csv");
   EXPECT_FALSE(csv.cloud.has_normals());
-  EXPECT_EQ(csv.other_attributes, std::vector<std::string>{"Intensity"});
+  ASSERT_NE(csv.cloud.attribute("intensity"), nullptr);
+  EXPECT_EQ(csv.cloud.attribute("intensity")->values.at(4), 0.5f);
+  for (const char* las : {"points.las", "points_14.las"}) {
+    const ReadResult r = read_point_cloud(kOk + las);
+    EXPECT_EQ(r.cloud.colors.at(1), (Rgb8{255, 128, 0})) << las;
+    EXPECT_EQ(r.cloud.attribute("classification")->values.at(3), 2.f) << las;
+    EXPECT_EQ(r.cloud.attribute("intensity")->values.at(3), 103.f) << las;
+  }
   for (const char* pcd : {"points_ascii.pcd", "points_binary.pcd"}) {
     const ReadResult r = read_point_cloud(kOk + pcd);
     ASSERT_TRUE(r.cloud.has_colors()) << pcd;
@@ -131,7 +130,7 @@ TEST(ReadCloud, NonFinitePointsAreDroppedWithOneWarning) {
 }
 
 TEST(ReadCloud, ZeroNormalsAreIgnoredWithAWarning) {
-  const ReadResult r = read_point_cloud_from_memory("0 0 0 0 0 1\n1 1 1 0 0 0\n", "z.xyz");
+  const ReadResult r = read_point_cloud_from_memory("x y z nx ny nz\n0 0 0 0 0 1\n1 1 1 0 0 0\n", "z.xyz");
   EXPECT_FALSE(r.cloud.has_normals());
   EXPECT_EQ(r.warnings.size(), 1u);
 }

@@ -6,6 +6,8 @@
 #include <limits>
 #include <array>
 #include <cstdint>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace pcsketch {
@@ -29,12 +31,20 @@ struct Box3f {
   }
 };
 
+/// A scalar per point read from the file (LAS classification, intensity, return number; an XYZ intensity column).
+/// float holds every LAS field kept exactly (they are at most 16-bit integers).
+struct PointAttribute {
+  std::string name;           ///< "classification", "intensity", "return_number"
+  std::vector<float> values;  ///< #P
+};
+
 /// A cloud of #P points. Positions are float, relative to a double `origin`, so that georeferenced scans with large
 /// offsets (UTM) keep their precision: world = origin + position.
 struct PointCloud {
   std::vector<Vec3f> positions;  ///< #P, relative to origin
   std::vector<Vec3f> normals;    ///< empty or #P, unit length
   std::vector<Rgb8> colors;      ///< empty or #P
+  std::vector<PointAttribute> attributes;  ///< each #P
   Vec3d origin = Vec3d::Zero();  ///< world offset of every position
   /// empty or #P: index of each point in the file it was read from (after reordering, the mapping back).
   std::vector<std::uint32_t> source_index;
@@ -44,6 +54,12 @@ struct PointCloud {
   bool has_normals() const { return !positions.empty() && normals.size() == positions.size(); }
   bool has_colors() const { return !positions.empty() && colors.size() == positions.size(); }
   Vec3d world(std::size_t i) const { return origin + positions[i].cast<double>(); }
+  /// The attribute called `name`, or nullptr.
+  const PointAttribute* attribute(std::string_view name) const {
+    for (const PointAttribute& a : attributes)
+      if (a.name == name) return &a;
+    return nullptr;
+  }
 };
 
 /// Bounding box of the positions (relative coordinates).
@@ -54,6 +70,10 @@ void permute(PointCloud& cloud, const std::vector<std::uint32_t>& order);
 /// Keeps the points `order` lists, in that order (new i = old order[i]), in every per-point array; source_index is
 /// composed with it, so kept points still name their place in the file.
 void select(PointCloud& cloud, const std::vector<std::uint32_t>& order);
+
+/// Keeps the points `kept` (indices into the cloud, each at most once; new i = old kept[i]) in every per-point
+/// array and removes the others. A non-empty source_index is composed; an empty one stays empty.
+void keep_points(PointCloud& cloud, const std::vector<std::uint32_t>& kept);
 
 /// A triangle mesh: #V vertices (same origin convention as PointCloud) and #F index triples.
 struct Mesh {

@@ -3,14 +3,31 @@
 // (magic "ply", "OFF", a PCD header) and then by its extension (docs/io.md lists the formats).
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
 #include "pcsketch/core/report.h"
+#include "pcsketch/io/decimate.h"
 
 namespace pcsketch::io {
+
+/// What one column of a text file (XYZ/PTS/TXT/CSV/ASC) holds.
+enum class Column : std::uint8_t { X, Y, Z, Nx, Ny, Nz, Red, Green, Blue, Intensity, Skip };
+
+/// Parses a column list such as "x,y,z,r,g,b" (names: x y z r g b i nx ny nz skip; case-insensitive; the long
+/// forms red green blue intensity too).
+/// @throws pcsketch::Error naming the unknown or repeated name, or when x, y or z is missing.
+std::vector<Column> parse_columns(std::string_view spec);
+
+/// An axis-aligned box in the file's own coordinates (before recentring).
+struct CropBox {
+  Vec3d min;
+  Vec3d max;
+};
 
 struct ReadOptions {
   /// Recentre the cloud on a double origin (the bounding-box centre rounded to whole units) when it lies far from
@@ -21,21 +38,36 @@ struct ReadOptions {
   bool keep_normals = true;
   /// Keep the per-point colours of the file (red green blue).
   bool keep_colors = true;
+  /// Text files: what each column holds. Empty: a header row names the columns, else they are guessed from the
+  /// values (columns 4-6 are normals only if they are unit vectors; docs/io.md).
+  std::vector<Column> columns;
+  /// Keep only the points whose classification (LAS) is one of these; empty: every class.
+  std::vector<int> classes;
+  /// Remove the points whose classification (LAS) is one of these (7 = noise); applied after `classes`.
+  std::vector<int> drop_classes;
+  /// Keep only the points inside this box (bounds included), in file coordinates; none: every point.
+  std::optional<CropBox> crop;
+  /// Voxel thinning after cropping (off by default: every point is kept).
+  DecimateOptions decimate;
 };
 
 /// A cloud as read, plus what the reader noticed.
 struct ReadResult {
   PointCloud cloud;                           ///< #P finite points; source_index empty (file order)
   std::string format;                         ///< reader and layout, e.g. "ply binary_little_endian", "xyz", "off"
+  std::string columns;                        ///< text formats: "x,y,z,r,g,b (guessed from the values)"
   Warnings warnings;                          ///< one line each, e.g. the count of dropped non-finite points
   std::size_t dropped_non_finite = 0;         ///< points with a NaN or infinite coordinate, not in `cloud`
   std::size_t points_in_file = 0;             ///< points the file holds, dropped ones included
+  std::size_t dropped_by_filter = 0;          ///< points outside the crop box or of an unwanted class
+  std::optional<DecimateReport> decimation;   ///< set when ReadOptions::decimate asked for thinning
   std::vector<std::string> other_attributes;  ///< per-point properties/columns present in the file but not kept
 };
 
-/// Reads the points of a PLY, XYZ/PTS/TXT/CSV/ASC, PCD, OFF or OBJ file (the vertices of a mesh are its points).
+/// Reads the points of a PLY, LAS, XYZ/PTS/TXT/CSV/ASC, PCD, OFF or OBJ file (the vertices of a mesh are its points).
 /// The file is mapped into memory once; header counts are checked against the file size before anything is
-/// allocated. Points with a NaN or infinite coordinate are dropped with one warning counting them.
+/// allocated. Points with a NaN or infinite coordinate are dropped with one warning counting them; then the
+/// class filters and the crop box apply, then the thinning.
 /// @throws pcsketch::Error naming the file and the line (text) or byte offset (binary) for an empty, truncated,
 ///         malformed or unknown file, and when no finite point is left.
 ReadResult read_point_cloud(const std::string& path, const ReadOptions& options = {});
