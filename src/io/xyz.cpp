@@ -94,11 +94,12 @@ RawCloud parse_xyz(const Source& src, Want) {
   RawCloud raw;
   raw.format = ext.size() > 1 ? ext.substr(1) : "xyz";
 
-  LineReader lines(src.bytes);
+  LineReader lines(skip_bom(src.bytes), 1, src.path);
   std::string_view line;
   std::optional<Columns> columns;
   bool first_data_line = true;
-  int needed = 0;  // columns a line must have
+  int needed = 0;         // columns read from each line
+  std::size_t width = 0;  // columns every line has: those of the first (header or data)
   std::vector<int> slot_of_column;
   bool has_normals = false, has_colors = false;
   std::array<double, 9> v{};
@@ -111,6 +112,7 @@ RawCloud parse_xyz(const Source& src, Want) {
       std::uint64_t count = 0;
       if (tokens.size() == 1 && parse_uint(tokens[0], count)) continue;  // the PTS count line: a hint only
       if (!parse_double(tokens[0], unused)) {
+        width = tokens.size();
         columns = columns_from_names(tokens, raw.other_attributes);
         if ((*columns)[0] == kNone || (*columns)[1] == kNone || (*columns)[2] == kNone)
           src.fail_at_line(lines.line(), "XYZ: non-numeric first line is not a header naming x, y and z columns");
@@ -121,6 +123,7 @@ RawCloud parse_xyz(const Source& src, Want) {
       const std::size_t count = split(line).size();
       if (count < 3) src.fail_at_line(lines.line(), "XYZ: too few columns (" + std::to_string(count) + "; need x y z)");
       columns = columns_from_count(count, raw.format == "pts", raw.other_attributes);
+      width = count;
     }
     if (needed == 0) {
       has_normals = (*columns)[3] != kNone && (*columns)[4] != kNone && (*columns)[5] != kNone;
@@ -140,9 +143,14 @@ RawCloud parse_xyz(const Source& src, Want) {
                          "XYZ: too few columns (" + std::to_string(c) + "; need " + std::to_string(needed) + ")");
       if (slot_of_column[c] == kNone) continue;
       if (!parse_double(token, v[slot_of_column[c]]))
-        src.fail_at_line(lines.line(), "XYZ: non-numeric value \"" + std::string(token.substr(0, 32)) +
-                                           "\" in column " + std::to_string(c + 1));
+        src.fail_at_line(lines.line(), "XYZ: " + bad_number(token) + " in column " + std::to_string(c + 1));
     }
+    // A row with a column more or less than the first would shift or misread values.
+    std::size_t count = needed;
+    while (tokens.next(token)) ++count;
+    if (count != width)
+      src.fail_at_line(lines.line(),
+                       "XYZ: " + std::to_string(count) + " columns where the first line has " + std::to_string(width));
     raw.positions.emplace_back(v[0], v[1], v[2]);
     if (has_normals) raw.normals.emplace_back(float(v[3]), float(v[4]), float(v[5]));
     if (has_colors) raw.colors.push_back({to_channel(v[6]), to_channel(v[7]), to_channel(v[8])});

@@ -14,7 +14,21 @@
 #include <string>
 #include <vector>
 
+#include "pcsketch/core/error.h"
+
 namespace pcsketch::test {
+
+/// The message of the pcsketch::Error `f` throws ("" and a test failure if it throws none).
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no pcsketch::Error thrown";
+  return "";
+}
 
 /// A fresh directory per test, removed afterwards.
 class TempDir {

@@ -21,17 +21,7 @@ void expect_five(const ReadResult& r) {
   for (std::size_t i = 0; i < kFive.size(); ++i) EXPECT_EQ(r.cloud.world(i), kFive[i]) << i;
 }
 
-/// The message of the pcsketch::Error `f` throws ("" and a test failure if it throws none).
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no pcsketch::Error thrown";
-  return "";
-}
+using test::error_of;
 
 TEST(ReadCloud, EveryOkFixtureReadsTheSameFivePoints) {
   for (const char* name : {"tiny_ascii.ply", "tiny_binary_le.ply", "tiny_binary_be.ply", "points.xyz", "points.pts",
@@ -96,7 +86,9 @@ TEST(ReadCloud, PcdBinaryCompressed) {
       "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nPOINTS 2\n"
       "DATA binary_compressed\n";
   const std::string file = header + std::string(reinterpret_cast<const char*>(sizes), 8) + lzf;
-  const ReadResult r = read_point_cloud_from_memory(file, "c.pcd", {.recentre = false});
+  // The two points are equal by construction (that is what the back reference repeats): keep both.
+  const ReadOptions keep{.recentre = false, .collapse_duplicates = false};
+  const ReadResult r = read_point_cloud_from_memory(file, "c.pcd", keep);
   ASSERT_EQ(r.cloud.size(), 2u);
   EXPECT_EQ(r.cloud.positions[1], Vec3f(p[0], p[1], p[2]));
 
@@ -113,7 +105,7 @@ TEST(ReadCloud, PcdBinaryCompressed) {
   lzf2 += char(7) + zz;
   const std::uint32_t sizes2[2] = {std::uint32_t(lzf2.size()), 24};
   const ReadResult r2 = read_point_cloud_from_memory(
-      header + std::string(reinterpret_cast<const char*>(sizes2), 8) + lzf2, "c.pcd", {.recentre = false});
+      header + std::string(reinterpret_cast<const char*>(sizes2), 8) + lzf2, "c.pcd", keep);
   ASSERT_EQ(r2.cloud.size(), 2u);
   EXPECT_EQ(r2.cloud.positions[0], Vec3f(p[0], p[1], p[2]));
   EXPECT_EQ(r2.cloud.positions[1], Vec3f(p[0], p[1], p[2]));
