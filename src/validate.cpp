@@ -20,6 +20,11 @@ void in_range(const std::string& flag, double value, double lo, double hi, bool 
   const std::string range = (above ? "(" : "[") + number(lo) + ", " + (hi == kHuge ? "inf)" : number(hi) + "]");
   throw OptionError(flag, "must be in " + range + ", got " + number(value));
 }
+/// `value` in the open interval (lo, hi).
+void open_range(const std::string& flag, double value, double lo, double hi) {
+  in_range(flag, value, lo, hi, true);
+  if (value == hi) throw OptionError(flag, "must be in (" + number(lo) + ", " + number(hi) + "), got " + number(value));
+}
 void positive(const std::string& flag, double value, double hi = kHuge) { in_range(flag, value, 0, hi, true); }
 void non_negative(const std::string& flag, double value, double hi = kHuge) { in_range(flag, value, 0, hi); }
 void fraction(const std::string& flag, double value) { in_range(flag, value, 0, 1); }
@@ -44,8 +49,7 @@ void validate_camera(const view::CameraOptions& c) {
   if (c.eye) point("--eye", *c.eye);
   if (c.target) point("--target", *c.target);
   if (c.eye && c.target && *c.eye == *c.target) throw OptionError("--eye", "must differ from --target");
-  in_range("--fov", c.fov_deg, 0, 180, true);
-  if (c.fov_deg == 180) throw OptionError("--fov", "must be below 180 degrees");
+  open_range("--fov", c.fov_deg, 0, 180);
   in_range("--size", c.width, 1, kMaxImageSide);
   in_range("--size", c.height, 1, kMaxImageSide);
   in_range("--margin", c.margin, 0, 0.45);
@@ -64,11 +68,11 @@ void validate_surface(const differential::SurfaceOptions& s) {
 void validate_features(const features::RidgeValleyOptions& f) {
   const features::DetectionOptions& d = f.detection;
   // α = 0 would make every point a ridge/valley point (and fail late); it must be a positive fraction.
-  in_range("--alpha", d.ridge_threshold_alpha, 0, 1, true);
-  in_range("--extreme-percentile", d.extreme_percentile, 0, 100);
+  open_range("--alpha", d.ridge_threshold_alpha, 0, 1);
+  in_range("--extreme-percentile", d.extreme_percentile, 0, 100, true);
   non_negative("--saliency-floor", d.saliency_floor);
   non_negative("--median-factor", d.median_factor);
-  in_range("--suppression-cone", d.suppression_cone_deg, 0, 90, true);
+  open_range("--suppression-cone", d.suppression_cone_deg, 0, 90);
   positive("--radius", f.tracing.radius_factor, 1e4);
   if (f.tracing.radius) positive("--radius-abs", *f.tracing.radius);
   in_range("--corridor", f.tracing.corridor_fraction, 0, 1, true);

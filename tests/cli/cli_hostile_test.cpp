@@ -126,7 +126,7 @@ TEST_F(CliHostile, BadValuesFailAtOnceNamingTheFlag) {
         << r.err;
     EXPECT_FALSE(fs::exists(path("o.svg")));
   }
-  EXPECT_NE(limited(draw("--alpha 0")).err.find("--alpha: must be in (0, 1], got 0"), std::string::npos);
+  EXPECT_NE(limited(draw("--alpha 0")).err.find("--alpha: must be in (0, 1), got 0"), std::string::npos);
 }
 
 TEST_F(CliHostile, HugeViewDirectionGivesARealCamera) {
