@@ -177,7 +177,7 @@ TEST_F(CliHostile, FullDiskLeavesEarlierOutputsByteIdentical) {
   // A different drawing (larger, another view) under a 4 KB file size limit: every write fails part-way. SIGXFSZ is
   // ignored so that write() reports EFBIG instead of killing the process.
   const CommandRun r =
-      limited("draw " + path("s.xyz") + " --size 900x900 --azimuth 30" + outputs, "trap '' XFSZ; ulimit -f 4;");
+      limited("draw -q " + path("s.xyz") + " --size 900x900 --azimuth 30" + outputs, "trap '' XFSZ; ulimit -f 4;");
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_EQ(lines(r.err), 1u) << r.err;
   int i = 0;
