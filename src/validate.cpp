@@ -22,8 +22,9 @@ void in_range(const std::string& flag, double value, double lo, double hi, bool 
 }
 /// `value` in the open interval (lo, hi).
 void open_range(const std::string& flag, double value, double lo, double hi) {
-  in_range(flag, value, lo, hi, true);
-  if (value == hi) throw OptionError(flag, "must be in (" + number(lo) + ", " + number(hi) + "), got " + number(value));
+  in_range(flag, value, -kHuge, kHuge);  // the message for NaN and Inf
+  if (!(value > lo && value < hi))
+    throw OptionError(flag, "must be in (" + number(lo) + ", " + number(hi) + "), got " + number(value));
 }
 void positive(const std::string& flag, double value, double hi = kHuge) { in_range(flag, value, 0, hi, true); }
 void non_negative(const std::string& flag, double value, double hi = kHuge) { in_range(flag, value, 0, hi); }
