@@ -1,12 +1,14 @@
 // pcsketch draw INPUT -o OUT.svg [-o OUT.png] [-o OUT.pdf] [--json OUT.json] [--stages DIR]: the whole pipeline.
 // Flags bind straight to the fields of DrawOptions; every default lives in the option structs.
 
+#include <tbb/parallel_for_each.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <string>
-#include <tbb/parallel_for_each.h>
 #include <vector>
 
 #include "commands.h"
@@ -15,6 +17,7 @@
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/pipeline.h"
 #include "pcsketch/render/write.h"
+#include "pcsketch/validate.h"
 
 namespace pcsketch::cli {
 namespace {
@@ -41,7 +44,7 @@ Vec3d parse_vec3(const std::string& flag, const std::string& text) {
   char c1 = 0, c2 = 0;
   if (!(in >> v.x() >> c1 >> v.y() >> c2 >> v.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
       !v.allFinite())
-    throw CLI::ValidationError(flag, "expected three numbers X,Y,Z, got '" + text + "'");
+    throw CLI::ValidationError(flag, "expected three numbers X,Y,Z, got " + quote(text));
   return v;
 }
 
@@ -69,19 +72,65 @@ void print_timings(const Timings& t, const Prepared& prepared, const std::string
               s.denoised ? "denoised" : "not denoised");
 }
 
+/// The formats of the stage images: those of the main outputs, PNG when there are none.
+std::vector<std::string> stage_extensions(const std::vector<std::string>& outputs) {
+  std::vector<std::string> extensions;
+  for (const std::string& path : outputs) {
+    const std::string ext = fs::path(path).extension().string();
+    if (ext != ".json" && std::find(extensions.begin(), extensions.end(), ext) == extensions.end())
+      extensions.push_back(ext);
+  }
+  if (extensions.empty()) extensions.push_back(".png");
+  return extensions;
+}
+
+/// One file, however it is spelled (a/../b.svg, ./b.svg, a symlink to it).
+fs::path same_file_key(const std::string& path) { return fs::weakly_canonical(fs::absolute(path)); }
+
+/// Every output checked before the input is read: format, directory, no file written twice, --stages never
+/// overwriting an -o file.
+void check_outputs(const DrawArgs& args) {
+  std::vector<fs::path> keys;
+  for (const std::string& path : args.outputs) {
+    try {
+      render::check_output(path);
+    } catch (const Error& e) {
+      throw OptionError(path == args.json ? "--json" : "--output", e.what());
+    }
+    const fs::path key = same_file_key(path);
+    if (std::find(keys.begin(), keys.end(), key) != keys.end())
+      throw OptionError("--output", quote(path) + " is written twice");
+    keys.push_back(key);
+  }
+  if (args.stages.empty()) return;
+  std::error_code ec;
+  fs::path existing = fs::absolute(args.stages);
+  while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
+    existing = existing.parent_path();
+  if (!fs::is_directory(existing, ec) || ::access(existing.c_str(), W_OK) != 0)
+    throw OptionError("--stages", quote(existing.string()) + " is not a writable directory");
+  for (const std::string_view stem : kStageNames)
+    for (const std::string& ext : stage_extensions(args.outputs)) {
+      const fs::path stage = fs::path(args.stages) / (std::string(stem) + ext);
+      if (std::find(keys.begin(), keys.end(), same_file_key(stage.string())) != keys.end())
+        throw OptionError("--stages", "would overwrite the output " + quote(stage.string()));
+    }
+}
+
 void run_draw(DrawArgs& args, const GlobalOptions& global) {
   if (args.outputs.empty() && args.json.empty() && args.stages.empty())
-    throw CLI::ValidationError("draw", "nothing to write: give -o OUT.svg|png|pdf, --json OUT.json or --stages DIR");
-  for (const std::string& path : args.outputs)
-    if (!render::is_supported_output(path))
-      throw CLI::ValidationError("--output", path + ": unknown format (use .svg, .pdf, .png or .json)");
+    throw OptionError("draw", "nothing to write: give -o OUT.svg|png|pdf, --json OUT.json or --stages DIR");
   if (!args.json.empty()) args.outputs.push_back(args.json);
+  // Everything that can be refused is refused before the input is read.
+  validate(args.options);
+  check_outputs(args);
 
   DrawOptions& options = args.options;
   options.progress = make_progress(global);
   Timings timings;
   auto start = Clock::now();
   io::ReadResult read = io::read_point_cloud(args.input, args.read);
+  io::check_scale(read.cloud, args.input);
   const std::string reduction = describe_reduction(read);
   timings.read = seconds_since(start);
   print_warnings(global, read.warnings);
@@ -99,15 +148,10 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
     timings += result.timings;
   }
   if (!args.stages.empty()) {
-    fs::create_directories(args.stages);
-    // The stage images take the formats of the main outputs (PNG when there are none).
-    std::vector<std::string> extensions;
-    for (const std::string& path : args.outputs) {
-      const std::string ext = fs::path(path).extension().string();
-      if (ext != ".json" && std::find(extensions.begin(), extensions.end(), ext) == extensions.end())
-        extensions.push_back(ext);
-    }
-    if (extensions.empty()) extensions.push_back(".png");
+    std::error_code ec;
+    fs::create_directories(args.stages, ec);
+    if (ec) throw Error(FileLoc{args.stages, {}, {}}, "cannot create the directory: " + ec.message());
+    const std::vector<std::string> extensions = stage_extensions(args.outputs);
     // Their warnings are the ones draw_view printed for the same camera.
     const auto stages = stage_drawings(prepared, options.camera, options).stages;
     tbb::parallel_for_each(stages.begin(), stages.end(), [&](const auto& stage) {
@@ -169,7 +213,7 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
            char x = 0;
            std::istringstream in(s);
            if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || w <= 0 || h <= 0 || !(in >> std::ws).eof())
-             throw CLI::ValidationError("--size", "expected WxH in pixels, e.g. 1024x768, got '" + s + "'");
+             throw CLI::ValidationError("--size", "expected WxH in pixels, e.g. 1024x768, got " + quote(s));
            o.camera.width = w;
            o.camera.height = h;
          },

@@ -13,6 +13,8 @@
 #include "pcsketch/features/ridge_valley_lines.h"
 #include "pcsketch/io/ply.h"
 #include "pcsketch/io/read_cloud.h"
+#include "pcsketch/pipeline.h"
+#include "pcsketch/validate.h"
 
 namespace pcsketch::cli {
 namespace {
@@ -99,7 +101,13 @@ void write_lines_json(const std::string& path, const PointCloud& cloud, const di
 }
 
 void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
+  // The flags shared with draw get draw's checks, before the input is read.
+  DrawOptions checked;
+  checked.surface = args.surface;
+  checked.features = args.features;
+  validate(checked);
   io::ReadResult read = io::read_point_cloud(args.in_path, args.read);
+  io::check_scale(read.cloud, args.in_path);
   print_warnings(global, read.warnings);
   PointCloud& cloud = read.cloud;
   differential::SurfaceOptions surface_options = args.surface;

@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "options.h"
+#include "pcsketch/core/error.h"
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
 #include "pcsketch/neighbourhood/neighbourhoods.h"
@@ -88,10 +89,10 @@ void run_info(const InfoArgs& args, const GlobalOptions& global) {
   const neighbourhood::KdTree tree(cloud.positions);
   const float h = neighbourhood::mean_spacing(neighbourhood::compute_neighbourhoods(tree, cloud.positions, nb));
 
-  std::printf("file        %s\n", args.path.c_str());
+  std::printf("file        %s\n", one_line(args.path).c_str());
   std::printf("format      %s\n", r.format.c_str());
-  std::printf("points      %zu (%zu in the file, %zu dropped as non-finite)\n", cloud.size(), r.points_in_file,
-              r.dropped_non_finite);
+  std::printf("points      %zu (%zu in the file, %zu dropped as non-finite, %zu exact duplicates)\n", cloud.size(),
+              r.points_in_file, r.dropped_non_finite, r.duplicates);
   if (!r.columns.empty()) std::printf("columns     %s\n", r.columns.c_str());
   std::printf("attributes  %s\n", attributes.c_str());
   print_attributes(r);
@@ -122,7 +123,7 @@ void add_info_command(CLI::App& app, const GlobalOptions& global) {
                 "Keep world coordinates as float positions instead of recentring far-away clouds on a double origin");
   cmd->add_option("--k", args->neighbourhoods.k, "Neighbours per point for the spacing estimate")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(std::size_t{1}, neighbourhood::kMaxNeighbours));
   cmd->callback([args, &global] { run_info(*args, global); });
 }
 

@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "pcsketch/core/error.h"
+#include "pcsketch/validate.h"
 
 int main(int argc, char** argv) {
   using namespace pcsketch::cli;
@@ -28,11 +29,18 @@ int main(int argc, char** argv) {
     if (global.threads > 0)
       thread_limit.emplace(oneapi::tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(global.threads));
   });
+  // A bad command line is one line on stderr, as every other error.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "pcsketch: error: " + pcsketch::one_line(e.what()) + " (see --help)\n";
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? kOk : kUsage;
+  } catch (const pcsketch::OptionError& e) {
+    std::cerr << "pcsketch: error: " << e.what() << "\n";
+    return kUsage;
   } catch (const pcsketch::Error& e) {
     std::cerr << "pcsketch: error: " << e.what() << "\n";
     return kBadInput;

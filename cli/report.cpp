@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.h"
+#include "pcsketch/core/error.h"
 
 namespace pcsketch::cli {
 
@@ -35,7 +36,7 @@ ProgressFn make_progress(const GlobalOptions& global) {
 
 void print_warnings(const GlobalOptions& global, const Warnings& warnings) {
   if (global.quiet) return;
-  for (const std::string& w : warnings) std::fprintf(stderr, "pcsketch: warning: %s\n", w.c_str());
+  for (const std::string& w : warnings) std::fprintf(stderr, "pcsketch: warning: %s\n", one_line(w).c_str());
 }
 
 }  // namespace pcsketch::cli

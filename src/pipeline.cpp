@@ -6,6 +6,7 @@
 
 #include "pcsketch/core/error.h"
 #include "pcsketch/stylize/thickness.h"
+#include "pcsketch/validate.h"
 
 namespace pcsketch {
 
@@ -224,6 +225,7 @@ nlohmann::json DrawOptions::to_json() const {
 }
 
 Prepared prepare(PointCloud cloud, const DrawOptions& options) {
+  validate(options);
   Prepared p;
   p.cloud = std::move(cloud);
   if (p.cloud.size() < std::max<std::size_t>(options.min_points, 3)) {
@@ -264,6 +266,7 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
 
 DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera_options,
                      const DrawOptions& options) {
+  validate(options, camera_options);
   DrawResult result;
   const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera_options);
   const nlohmann::json parameters = parameters_json(prepared, options, camera_options);
@@ -287,17 +290,22 @@ DrawResult draw(PointCloud cloud, const DrawOptions& options) {
 
 StageDrawings stage_drawings(const Prepared& prepared, const view::CameraOptions& camera_options,
                              const DrawOptions& options) {
+  validate(options, camera_options);
   const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera_options);
   const nlohmann::json parameters = parameters_json(prepared, options, camera_options);
   stylize::ThicknessOptions constant = options.thickness;
   constant.model = stylize::ThicknessModel::Constant;
   constant.brush = false;
   const std::vector<std::pair<std::string, StyleRequest>> columns = {
-      {"b_contours", {{.contours = true, .ridges = false, .valleys = false, .hatching = false}, constant}},
-      {"c_ridges_valleys", {{.contours = false, .ridges = true, .valleys = true, .hatching = false}, constant}},
-      {"d_fused", {{.contours = true, .ridges = true, .valleys = true, .hatching = false}, constant}},
-      {"e_thickness", {{.contours = true, .ridges = true, .valleys = true, .hatching = false}, options.thickness}},
-      {"f_shadow", {{.contours = true, .ridges = true, .valleys = true, .hatching = true}, options.thickness}}};
+      {std::string(kStageNames[0]),
+       {{.contours = true, .ridges = false, .valleys = false, .hatching = false}, constant}},
+      {std::string(kStageNames[1]),
+       {{.contours = false, .ridges = true, .valleys = true, .hatching = false}, constant}},
+      {std::string(kStageNames[2]), {{.contours = true, .ridges = true, .valleys = true, .hatching = false}, constant}},
+      {std::string(kStageNames[3]),
+       {{.contours = true, .ridges = true, .valleys = true, .hatching = false}, options.thickness}},
+      {std::string(kStageNames[4]),
+       {{.contours = true, .ridges = true, .valleys = true, .hatching = true}, options.thickness}}};
   StageDrawings out;
   if (!prepared.analysed()) {
     for (const auto& column : columns)

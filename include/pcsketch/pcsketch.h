@@ -18,5 +18,6 @@
 #include "pcsketch/render/svg.h"
 #include "pcsketch/render/write.h"
 #include "pcsketch/stylize/thickness.h"
+#include "pcsketch/validate.h"
 #include "pcsketch/view/camera.h"
 #include "pcsketch/view/view.h"

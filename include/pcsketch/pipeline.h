@@ -2,9 +2,10 @@
 // The whole pipeline: a raw point cloud in, a Drawing of one view out (paper Fig. 2). Split in two so that a second
 // view of the same cloud reuses every view-independent result: prepare() once, draw_view() per view.
 
+#include <array>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
-#include <nlohmann/json_fwd.hpp>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -96,7 +97,8 @@ struct Prepared {
 /// Analyses `cloud` (neighbourhoods, normals, curvature), extracts ridge and valley lines and builds the ray-casting
 /// scene. A cloud too small or too degenerate to analyse (fewer than `min_points`, fewer than 3 distinct points)
 /// gives a Prepared without analysis and a warning: draw_view then returns an empty drawing.
-/// @throws pcsketch::Error for options out of range; pcsketch::Cancelled if the progress callback asks to stop.
+/// @throws OptionError (validate.h) for options out of range; pcsketch::Cancelled if the progress callback asks to
+/// stop.
 Prepared prepare(PointCloud cloud, const DrawOptions& options = {});
 
 /// A drawing of one view, with what it cost.
@@ -112,6 +114,10 @@ DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera
 
 /// prepare() then draw_view() with options.camera. Timings and warnings of both steps.
 DrawResult draw(PointCloud cloud, const DrawOptions& options = {});
+
+/// File stems of the paper's Fig. 19 columns, in order (stage_drawings; the CLI checks -o against them).
+inline constexpr std::array<std::string_view, 5> kStageNames = {"b_contours", "c_ridges_valleys", "d_fused",
+                                                                "e_thickness", "f_shadow"};
 
 /// The paper's Fig. 19 columns of one view, and what computing them took and reported.
 struct StageDrawings {

@@ -13,12 +13,18 @@
 namespace pcsketch::io::detail {
 
 MappedFile::MappedFile(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw Error(FileLoc{path, {}, {}}, std::string("cannot open: ") + std::strerror(errno));
+  const FileLoc where{path, {}, {}};
+  // Every reader needs the whole file at once (counts are checked against its size): no streaming from stdin.
+  if (path == "-") throw Error(where, "reading from standard input is not supported; name a file");
+  // A FIFO, socket or device is refused before open(), which would block on a FIFO without a writer; O_NONBLOCK
+  // and the second check cover a file swapped in between.
   struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) throw Error(where, "not a regular file");
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) throw Error(where, std::string("cannot open: ") + std::strerror(errno));
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw Error(FileLoc{path, {}, {}}, "not a regular file");
+    throw Error(where, "not a regular file");
   }
   size_ = static_cast<std::size_t>(st.st_size);
   if (size_ > 0) {
@@ -26,7 +32,7 @@ MappedFile::MappedFile(const std::string& path) {
     if (p == MAP_FAILED) {
       const int err = errno;
       ::close(fd);
-      throw Error(FileLoc{path, {}, {}}, std::string("cannot map into memory: ") + std::strerror(err));
+      throw Error(where, std::string("cannot map into memory: ") + std::strerror(err));
     }
     // Readers go front to back once.
     ::madvise(p, size_, MADV_SEQUENTIAL);

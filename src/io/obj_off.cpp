@@ -22,16 +22,14 @@ bool next_content_line(LineReader& lines, std::string_view& line) {
 
 double number(const Source& src, const LineReader& lines, std::string_view token, const char* format) {
   double v = 0;
-  if (!parse_double(token, v))
-    src.fail_at_line(lines.line(),
-                     std::string(format) + ": non-numeric value \"" + std::string(token.substr(0, 32)) + "\"");
+  if (!parse_double(token, v)) src.fail_at_line(lines.line(), std::string(format) + ": " + bad_number(token));
   return v;
 }
 
 }  // namespace
 
 RawCloud parse_off(const Source& src, Want want) {
-  LineReader lines(src.bytes);
+  LineReader lines(src.bytes, 1, src.path);
   std::string_view line;
   next_content_line(lines, line);
   Tokens header(line, false);
@@ -40,7 +38,7 @@ RawCloud parse_off(const Source& src, Want want) {
   // Variants: [C][N]OFF (colours, normals per vertex). 4OFF, nOFF and STOFF change the vertex layout.
   const std::string_view prefix = magic.substr(0, magic.size() - 3);
   if (prefix != "" && prefix != "C" && prefix != "N" && prefix != "CN" && prefix != "NC")
-    src.fail_at_line(lines.line(), "OFF: unsupported variant \"" + std::string(magic) + "\"");
+    src.fail_at_line(lines.line(), "OFF: unsupported variant " + quote(magic));
   const bool has_normals = prefix.find('N') != std::string_view::npos;
 
   // The counts may follow the magic on the same line.
@@ -108,7 +106,7 @@ RawCloud parse_off(const Source& src, Want want) {
 RawCloud parse_obj(const Source& src, Want want) {
   RawCloud raw;
   raw.format = "obj";
-  LineReader lines(src.bytes);
+  LineReader lines(src.bytes, 1, src.path);
   std::string_view line, keyword, token;
   std::vector<std::uint32_t> polygon;
   bool has_vn = false;

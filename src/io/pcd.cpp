@@ -78,10 +78,29 @@ Rgb8 unpack_rgb(double value, PlyScalar type) {
   return {static_cast<std::uint8_t>(bits >> 16), static_cast<std::uint8_t>(bits >> 8), static_cast<std::uint8_t>(bits)};
 }
 
+/// The LZF body of a binary_compressed PCD starting at `body`, which must unpack to `size_expected` bytes.
+std::vector<char> unpack(const Source& src, std::size_t body, std::uint64_t size_expected) {
+  const std::string_view bytes = src.bytes.substr(body);
+  if (bytes.size() < 8) src.fail_at_byte(body, "PCD: compressed body lacks its 8-byte size header");
+  const auto compressed = load_swapped<std::uint32_t>(bytes.data(), false);
+  const auto size = load_swapped<std::uint32_t>(bytes.data() + 4, false);
+  if (compressed > bytes.size() - 8)
+    src.fail_at_byte(body, "PCD: compressed size " + std::to_string(compressed) + " exceeds the file (truncated?)");
+  if (size != size_expected)
+    src.fail_at_byte(body + 4, "PCD: uncompressed size " + std::to_string(size) + " is not POINTS x record size " +
+                                   std::to_string(size_expected));
+  // LZF expands at most 88 times (264 bytes from a 3-byte back reference): bounds the allocation.
+  if (size > 88ull * compressed + 32) src.fail_at_byte(body + 4, "PCD: uncompressed size impossible for LZF");
+  std::vector<char> unpacked(size);
+  if (!lzf_decompress(bytes.substr(8, compressed), unpacked))
+    src.fail_at_byte(body + 8, "PCD: corrupt LZF-compressed body");
+  return unpacked;
+}
+
 }  // namespace
 
 RawCloud parse_pcd(const Source& src, Want) {
-  LineReader lines(src.bytes);
+  LineReader lines(src.bytes, 1, src.path);
   std::string_view line, keyword, token;
   std::vector<Field> fields;
   std::uint64_t width = 0, height = 1, points = 0;
@@ -110,13 +129,12 @@ RawCloud parse_pcd(const Source& src, Want) {
     } else if (keyword == "SIZE" || keyword == "COUNT") {
       per_field([&](Field& f, std::string_view v) {
         std::uint64_t x = 0;
-        if (!parse_uint(v, x) || x == 0 || x > 1024)
-          fail("invalid " + std::string(keyword) + " \"" + std::string(v) + "\"");
+        if (!parse_uint(v, x) || x == 0 || x > 1024) fail("invalid " + std::string(keyword) + " " + quote(v));
         (keyword == "SIZE" ? f.size : f.count) = x;
       });
     } else if (keyword == "TYPE") {
       per_field([&](Field& f, std::string_view v) {
-        if (v.size() != 1) fail("invalid TYPE \"" + std::string(v) + "\"");
+        if (v.size() != 1) fail("invalid TYPE " + quote(v));
         f.type = v[0];
       });
     } else if (keyword == "WIDTH") {
@@ -129,9 +147,9 @@ RawCloud parse_pcd(const Source& src, Want) {
     } else if (keyword == "DATA") {
       if (values.size() != 1) fail("DATA needs ascii, binary or binary_compressed");
       data = values[0];
-      if (data != "ascii" && data != "binary" && data != "binary_compressed") fail("unknown DATA \"" + data + "\"");
+      if (data != "ascii" && data != "binary" && data != "binary_compressed") fail("unknown DATA " + quote(data));
     } else {
-      fail("unknown header keyword \"" + std::string(keyword) + "\"");
+      fail("unknown header keyword " + quote(keyword));
     }
   }
   const std::uint64_t header_line = lines.line();
@@ -145,7 +163,7 @@ RawCloud parse_pcd(const Source& src, Want) {
   std::size_t record = 0;
   for (Field& f : fields) {
     const auto s = scalar_of(f.type, f.size);
-    if (!s) src.fail_at_line(header_line, "PCD: field \"" + f.name + "\" has unsupported TYPE/SIZE");
+    if (!s) src.fail_at_line(header_line, "PCD: field " + quote(f.name) + " has unsupported TYPE/SIZE");
     f.scalar = *s;
     f.offset = record;
     record += f.size * f.count;
@@ -177,6 +195,9 @@ RawCloud parse_pcd(const Source& src, Want) {
   if (points > 0xffffffffull || points > budget / min_bytes)
     src.fail_at_byte(body, "PCD: header claims " + std::to_string(points) + " points, but only " +
                                std::to_string(left) + " bytes follow the header (truncated file?)");
+  // The compressed body's sizes are checked (and it is unpacked) before the point arrays are allocated.
+  std::vector<char> unpacked;
+  if (data == "binary_compressed") unpacked = unpack(src, body, points * record);
   raw.positions.resize(points);
   if (has_normals) raw.normals.resize(points);
   if (rgb) raw.colors.resize(points);
@@ -206,8 +227,7 @@ RawCloud parse_pcd(const Source& src, Want) {
       for (double& v : values) {
         if (!tokens.next(token))
           src.fail_at_line(lines.line(), "PCD: too few values (need " + std::to_string(tokens_per_line) + ")");
-        if (!parse_double(token, v))
-          src.fail_at_line(lines.line(), "PCD: non-numeric value \"" + std::string(token.substr(0, 32)) + "\"");
+        if (!parse_double(token, v)) src.fail_at_line(lines.line(), "PCD: " + bad_number(token));
       }
       store(i, [&](const Field& f) { return values[first_token[&f - fields.data()]]; });
     }
@@ -215,21 +235,7 @@ RawCloud parse_pcd(const Source& src, Want) {
   }
   // Binary: point-major records. Compressed: field-major arrays (each field's values for every point in turn).
   std::string_view bytes = src.bytes.substr(body);
-  std::vector<char> unpacked;
   if (data == "binary_compressed") {
-    if (bytes.size() < 8) src.fail_at_byte(body, "PCD: compressed body lacks its 8-byte size header");
-    const auto compressed = load_swapped<std::uint32_t>(bytes.data(), false);
-    const auto size = load_swapped<std::uint32_t>(bytes.data() + 4, false);
-    if (compressed > bytes.size() - 8)
-      src.fail_at_byte(body, "PCD: compressed size " + std::to_string(compressed) + " exceeds the file (truncated?)");
-    if (size != points * record)
-      src.fail_at_byte(body + 4, "PCD: uncompressed size " + std::to_string(size) + " is not POINTS x record size " +
-                                     std::to_string(points * record));
-    // LZF expands at most 88 times (264 bytes from a 3-byte back reference): bounds the allocation.
-    if (size > 88ull * compressed + 32) src.fail_at_byte(body + 4, "PCD: uncompressed size impossible for LZF");
-    unpacked.resize(size);
-    if (!lzf_decompress(bytes.substr(8, compressed), unpacked))
-      src.fail_at_byte(body + 8, "PCD: corrupt LZF-compressed body");
     bytes = std::string_view(unpacked.data(), unpacked.size());
     for (std::size_t i = 0; i < points; ++i)
       store(i, [&](const Field& f) {

@@ -38,7 +38,7 @@ struct Header {
 };
 
 Header parse_header(const Source& src) {
-  LineReader lines(src.bytes);
+  LineReader lines(src.bytes, 1, src.path);
   std::string_view line;
   lines.next(line);
   Header h;
@@ -61,7 +61,7 @@ Header parse_header(const Source& src) {
       } else if (a == "binary_big_endian") {
         h.encoding = Encoding::BinaryBigEndian;
       } else {
-        fail("unknown format \"" + std::string(a) + "\"");
+        fail("unknown format " + quote(a));
       }
       have_format = true;
     } else if (keyword == "element") {
@@ -77,18 +77,18 @@ Header parse_header(const Source& src) {
         if (!tokens.next(b) || !tokens.next(c) || !tokens.next(d)) fail("list property needs two types and a name");
         const auto count_type = ply_scalar_from_name(b);
         const auto item_type = ply_scalar_from_name(c);
-        if (!count_type || !item_type) fail("unknown type in list property \"" + std::string(d) + "\"");
+        if (!count_type || !item_type) fail("unknown type in list property " + quote(d));
         if (*count_type == PlyScalar::F32 || *count_type == PlyScalar::F64)
-          fail("list count type of \"" + std::string(d) + "\" must be an integer type");
+          fail("list count type of " + quote(d) + " must be an integer type");
         p = Property{std::string(d), *item_type, count_type};
       } else {
         const auto type = ply_scalar_from_name(a);
-        if (!type || !tokens.next(b)) fail("property needs a known type and a name, got \"" + std::string(line) + "\"");
+        if (!type || !tokens.next(b)) fail("property needs a known type and a name, got " + quote(line));
         p = Property{std::string(b), *type, std::nullopt};
       }
       h.elements.back().properties.push_back(std::move(p));
     } else {
-      fail("unknown header keyword \"" + std::string(keyword) + "\"");
+      fail("unknown header keyword " + quote(keyword));
     }
   }
   if (!have_format) src.fail_at_line(lines.line(), "PLY: header has no format line");
@@ -105,7 +105,8 @@ void check_counts(const Source& src, const Header& h) {
   std::uint64_t needed = 0;
   for (const Element& e : h.elements) {
     if (e.count == 0) continue;
-    if (e.properties.empty()) src.fail_at_line(e.line, "PLY: element \"" + e.name + "\" has entries but no properties");
+    if (e.properties.empty())
+      src.fail_at_line(e.line, "PLY: element " + quote(e.name) + " has entries but no properties");
     // Smallest possible entry: binary, every scalar and list count once (lists empty); ascii, one digit and one
     // separator per value.
     std::uint64_t min_entry = 0;
@@ -113,7 +114,7 @@ void check_counts(const Source& src, const Header& h) {
       min_entry += h.encoding == Encoding::Ascii ? 2 : ply_scalar_size(p.count_type.value_or(p.type));
     // Invariant: needed <= budget, so the subtraction cannot wrap and the product below cannot overflow.
     if (e.count > (budget - needed) / min_entry)
-      src.fail_at_byte(h.body_offset, "PLY: element \"" + e.name + "\" claims " + std::to_string(e.count) +
+      src.fail_at_byte(h.body_offset, "PLY: element " + quote(e.name) + " claims " + std::to_string(e.count) +
                                           " entries of at least " + std::to_string(min_entry) + " bytes, but only " +
                                           std::to_string(available) + " bytes follow the header (truncated body?)");
     needed += e.count * min_entry;
@@ -127,7 +128,7 @@ constexpr int kSkip = -1;
 class BodyReader {
  public:
   BodyReader(const Source& src, const Header& h)
-      : src_(src), h_(h), pos_(h.body_offset), tokens_(src.bytes.substr(h.body_offset), h.body_line, false) {
+      : src_(src), h_(h), pos_(h.body_offset), tokens_(src.bytes.substr(h.body_offset), h.body_line, false, src.path) {
     swap_ = h.encoding != Encoding::Ascii &&
             (h.encoding == Encoding::BinaryBigEndian) != (std::endian::native == std::endian::big);
   }
@@ -156,11 +157,14 @@ class BodyReader {
         const double v = scalar(p.type, e, p);
         if (keep) {
           if (!(v >= 0 && v <= 4294967295.0) || v != std::floor(v))
-            fail(e, "list item of \"" + p.name + "\" is not a valid index");
+            fail(e, "list item of " + quote(p.name) + " is not a valid index");
           list.push_back(static_cast<std::uint32_t>(v));
         }
       }
     }
+    // An ascii entry is one line: a value too many would shift every later value into the wrong property.
+    if (!binary() && !tokens_.line_done())
+      fail(e, "more values on the line than the header's " + std::to_string(e.properties.size()) + " properties");
   }
 
   /// Skips `e` entirely.
@@ -183,8 +187,8 @@ class BodyReader {
   }
 
   [[noreturn]] void fail(const Element& e, const std::string& message) const {
-    if (binary()) src_.fail_at_byte(pos_, "PLY: element \"" + e.name + "\": " + message);
-    src_.fail_at_line(tokens_.line(), "PLY: element \"" + e.name + "\": " + message);
+    if (binary()) src_.fail_at_byte(pos_, "PLY: element " + quote(e.name) + ": " + message);
+    src_.fail_at_line(tokens_.line(), "PLY: element " + quote(e.name) + ": " + message);
   }
 
  private:
@@ -192,7 +196,7 @@ class BodyReader {
   std::uint64_t remaining() const { return src_.bytes.size() - pos_; }
 
   [[noreturn]] void truncated(const Element& e, const Property& p) const {
-    fail(e, "file ends in the middle of property \"" + p.name + "\" (truncated body)");
+    fail(e, "file ends in the middle of property " + quote(p.name) + " (truncated body)");
   }
 
   double scalar(PlyScalar type, const Element& e, const Property& p) {
@@ -204,16 +208,15 @@ class BodyReader {
       return v;
     }
     std::string_view token;
-    if (!tokens_.next(token)) fail(e, "file ends before property \"" + p.name + "\" (truncated body)");
+    if (!tokens_.next(token)) fail(e, "file ends before property " + quote(p.name) + " (truncated body)");
     double v = 0;
-    if (!parse_double(token, v))
-      fail(e, "non-numeric value \"" + std::string(token.substr(0, 32)) + "\" for property \"" + p.name + "\"");
+    if (!parse_double(token, v)) fail(e, bad_number(token) + " for property " + quote(p.name));
     return v;
   }
 
   std::uint64_t count(PlyScalar type, const Element& e, const Property& p) {
     const double v = scalar(type, e, p);
-    if (!(v >= 0) || v != std::floor(v) || v > 4294967295.0) fail(e, "invalid list count for \"" + p.name + "\"");
+    if (!(v >= 0) || v != std::floor(v) || v > 4294967295.0) fail(e, "invalid list count for " + quote(p.name));
     return static_cast<std::uint64_t>(v);
   }
 
@@ -223,6 +226,12 @@ class BodyReader {
   TokenStream tokens_;
   bool swap_ = false;
 };
+
+/// The first element called `name`, or nullptr.
+const Element* find_element(const Header& h, std::string_view name) {
+  const auto it = std::find_if(h.elements.begin(), h.elements.end(), [&](const Element& e) { return e.name == name; });
+  return it == h.elements.end() ? nullptr : &*it;
+}
 
 int find_property(const Element& e, std::initializer_list<std::string_view> names) {
   for (std::size_t j = 0; j < e.properties.size(); ++j)
@@ -241,10 +250,9 @@ std::uint8_t to_color(double v, PlyScalar type) {
 RawCloud parse_ply(const Source& src, Want want) {
   const Header h = parse_header(src);
   check_counts(src, h);
-  const auto vertex_it =
-      std::find_if(h.elements.begin(), h.elements.end(), [](const Element& e) { return e.name == "vertex"; });
-  if (vertex_it == h.elements.end()) src.fail("PLY: no \"vertex\" element in the header");
-  const Element& vertex = *vertex_it;
+  const Element* vertex_element = find_element(h, "vertex");
+  if (vertex_element == nullptr) src.fail("PLY: no \"vertex\" element in the header");
+  const Element& vertex = *vertex_element;
   if (vertex.count > 0xffffffffull) src.fail_at_line(vertex.line, "PLY: more than 2^32-1 vertices");
 
   // Slots: 0-2 position, 3-5 normal, 6-8 colour.
@@ -275,16 +283,14 @@ RawCloud parse_ply(const Source& src, Want want) {
   const Element* face = nullptr;
   int face_list = kSkip;
   if (want == Want::Mesh) {
-    for (const Element& e : h.elements) {
-      if (e.name != "face") continue;
-      for (std::size_t j = 0; j < e.properties.size(); ++j)
-        if (e.properties[j].count_type &&
-            (e.properties[j].name == "vertex_indices" || e.properties[j].name == "vertex_index"))
-          face_list = static_cast<int>(j);
-      if (face_list == kSkip) src.fail_at_line(e.line, "PLY: element \"face\" has no list property vertex_indices");
-      face = &e;
-    }
+    // The first "face" element, with its own list (a later one is skipped like any other element).
+    face = find_element(h, "face");
     if (face == nullptr) src.fail("PLY: no \"face\" element in the header; it is not a mesh");
+    for (std::size_t j = 0; j < face->properties.size(); ++j)
+      if (face->properties[j].count_type &&
+          (face->properties[j].name == "vertex_indices" || face->properties[j].name == "vertex_index"))
+        face_list = static_cast<int>(j);
+    if (face_list == kSkip) src.fail_at_line(face->line, "PLY: element \"face\" has no list property vertex_indices");
   }
 
   BodyReader body(src, h);

@@ -54,6 +54,10 @@ RawCloud parse_off(const Source& source, Want want);
 RawCloud parse_obj(const Source& source, Want want);
 RawCloud parse_las(const Source& source, Want want);
 
+/// Removes every exact copy of an earlier point (keeping the first, with its normal and colour), in expected linear
+/// time; returns the number removed. Positions must be finite.
+std::size_t collapse_duplicates(RawCloud& raw);
+
 /// A colour channel from a number in [0, 255] (rounded, clamped; non-finite gives 0).
 inline std::uint8_t to_channel(double v) {
   return static_cast<std::uint8_t>(std::clamp(std::round(std::isfinite(v) ? v : 0.0), 0.0, 255.0));

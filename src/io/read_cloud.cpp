@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "io/columns.h"
@@ -85,28 +86,40 @@ const Reader& choose_reader(const Source& source) {
           0, std::string(r.name) + ": wrong magic: the file starts with \"" + printable_head(source.bytes) + "\"");
     return r;
   }
-  source.fail("unknown format: extension \"" + ext + "\" is none of .ply .las .off .pcd .obj .xyz .pts .txt .csv .asc" +
+  source.fail("unknown format: extension " + quote(ext) + " is none of .ply .las .off .pcd .obj .xyz .pts .txt .csv .asc" +
               " and the first bytes \"" + printable_head(source.bytes) + "\" are no known magic");
+}
+
+// Lowest and highest corner of the bounding box of a non-empty set.
+std::pair<Vec3d, Vec3d> bounds(const std::vector<Vec3d>& positions) {
+  Vec3d lo = positions.front(), hi = positions.front();
+  for (const Vec3d& p : positions) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {lo, hi};
 }
 
 // Recentre far-away clouds on a whole-unit origin; keep origin 0 for clouds around the world origin, where float
 // positions lose nothing worth keeping (at most 4 bits against a centred cloud).
 Vec3d choose_origin(const std::vector<Vec3d>& positions, const ReadOptions& options) {
   if (!options.recentre || positions.empty()) return Vec3d::Zero();
-  Vec3d lo = positions.front(), hi = positions.front();
-  for (const Vec3d& p : positions) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
+  const auto [lo, hi] = bounds(positions);
   const Vec3d centre = 0.5 * (lo + hi);
   const double extent = (hi - lo).maxCoeff();
   if (centre.cwiseAbs().maxCoeff() <= 8.0 * extent) return Vec3d::Zero();
   return centre.array().round().matrix();
 }
 
-std::vector<Vec3f> relative(const std::vector<Vec3d>& positions, const Vec3d& origin) {
+std::vector<Vec3f> relative(const std::vector<Vec3d>& positions, const Vec3d& origin, const Source& source) {
   std::vector<Vec3f> out(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i) out[i] = (positions[i] - origin).cast<float>();
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    out[i] = (positions[i] - origin).cast<float>();
+    // 1e39 is a finite double but an infinite float.
+    if (!out[i].allFinite())
+      source.fail("point " + std::to_string(i) + " lies " + number((positions[i] - origin).cwiseAbs().maxCoeff()) +
+                  " units from the origin, beyond float range");
+  }
   return out;
 }
 
@@ -201,12 +214,16 @@ ReadResult finish_points(RawCloud&& raw, const Source& source, const ReadOptions
   if (!options.keep_normals) raw.normals.clear();
   if (!options.keep_colors) raw.colors.clear();
   drop_non_finite(raw, result, source);
+  if (options.collapse_duplicates) result.duplicates = detail::collapse_duplicates(raw);
+  if (result.duplicates > 0)
+    result.warnings.push_back(source.path + ": " + std::to_string(result.duplicates) +
+                              " points repeat an earlier point exactly; one copy of each kept");
   filter(raw, result, source, options);
   check_normals(raw, result, source);
 
   PointCloud& cloud = result.cloud;
   cloud.origin = choose_origin(raw.positions, options);
-  cloud.positions = relative(raw.positions, cloud.origin);
+  cloud.positions = relative(raw.positions, cloud.origin, source);
   cloud.normals = std::move(raw.normals);
   cloud.colors = std::move(raw.colors);
   cloud.attributes = std::move(raw.attributes);
@@ -232,12 +249,25 @@ Mesh read_faces(const Source& source, const ReadOptions& options) {
   if (raw.faces.empty()) source.fail(raw.format + ": the file holds no faces with 3 or more vertices");
   Mesh mesh;
   mesh.origin = choose_origin(raw.positions, options);
-  mesh.vertices = relative(raw.positions, mesh.origin);
+  mesh.vertices = relative(raw.positions, mesh.origin, source);
   mesh.faces = std::move(raw.faces);
   return mesh;
 }
 
 }  // namespace
+
+void check_scale(const PointCloud& cloud, const std::string& name) {
+  const Box3f box = bounding_box(cloud.positions);
+  if (box.empty()) return;
+  const double extent = (box.max - box.min).cast<double>().maxCoeff();
+  if (extent > kMaxCloudExtent || (extent > 0 && extent < kMinCloudExtent)) {
+    char span[32];  // three digits: the extent comes from float positions, its last digits mean nothing
+    std::snprintf(span, sizeof span, "%.3g", extent);
+    throw Error(FileLoc{name, {}, {}}, "the points span " + std::string(span) + " units, outside the " +
+                                           number(kMinCloudExtent) + " to " + number(kMaxCloudExtent) +
+                                           " that float geometry handles (a stray point far away, or wrong units?)");
+  }
+}
 
 ReadResult read_point_cloud(const std::string& path, const ReadOptions& options) {
   const detail::MappedFile file(path);

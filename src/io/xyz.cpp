@@ -123,10 +123,11 @@ RawCloud parse_xyz(const Source& src, Want) {
   raw.format = ext.size() > 1 ? ext.substr(1) : "xyz";
 
   Layout layout{{src.columns.begin(), src.columns.end()}, {}, src.columns.empty() ? "" : "--columns"};
-  LineReader lines(src.bytes);
+  LineReader lines(skip_bom(src.bytes), 1, src.path);
   std::string_view line;
   bool first_data_line = true;
   std::size_t width = 0;  // columns read from each line
+  std::size_t line_columns = 0;  // columns every line has: those of the first data line
   std::array<std::size_t, 3> xyz{0, 1, 2};
   std::vector<float> table;  // #P by width: every column read, as float (positions are kept in double apart)
   while (lines.next(line)) {
@@ -152,7 +153,10 @@ RawCloud parse_xyz(const Source& src, Want) {
         continue;
       }
     }
-    if (width == 0) width = table_width(line, layout, src, lines.line(), raw.other_attributes, xyz);
+    if (width == 0) {
+      width = table_width(line, layout, src, lines.line(), raw.other_attributes, xyz);
+      line_columns = split(line).size();
+    }
     // Column c of this line: a position in double, anything else into the table as float.
     Tokens tokens(line, true);
     std::string_view token;
@@ -160,19 +164,25 @@ RawCloud parse_xyz(const Source& src, Want) {
     for (std::size_t c = 0; c < width; ++c) {
       if (!tokens.next(token))
         src.fail_at_line(lines.line(),
-                         "XYZ: too few columns (" + std::to_string(c) + "; need " + std::to_string(width) + ")");
+                         "XYZ: " + std::to_string(c) + " columns where the first line has " +
+                             std::to_string(line_columns));
       double v = 0;
       if (!layout.columns.empty() && layout.columns[c] == Column::Skip) {
         table.push_back(0.f);
         continue;
       }
       if (!parse_double(token, v))
-        src.fail_at_line(lines.line(), "XYZ: non-numeric value \"" + std::string(token.substr(0, 32)) +
-                                           "\" in column " + std::to_string(c + 1));
+        src.fail_at_line(lines.line(), "XYZ: " + bad_number(token) + " in column " + std::to_string(c + 1));
       table.push_back(static_cast<float>(v));
       for (std::size_t s = 0; s < 3; ++s)
         if (xyz[s] == c) p[static_cast<Eigen::Index>(s)] = v;
     }
+    // A row with a column more or less than the first would shift or misread values.
+    std::size_t count = width;
+    while (tokens.next(token)) ++count;
+    if (count != line_columns)
+      src.fail_at_line(lines.line(), "XYZ: " + std::to_string(count) + " columns where the first line has " +
+                                         std::to_string(line_columns));
     raw.positions.push_back(p);
   }
   if (width == 0) return raw;

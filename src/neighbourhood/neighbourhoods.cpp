@@ -12,6 +12,9 @@ Neighbourhoods compute_neighbourhoods(const KdTree& tree, const std::vector<Vec3
   if (tree.size() != points.size())
     throw Error("neighbourhoods: the kd-tree holds " + std::to_string(tree.size()) + " points but the cloud has " +
                 std::to_string(points.size()));
+  if (options.k > kMaxNeighbours)
+    throw Error("neighbourhoods: k = " + std::to_string(options.k) + " exceeds the maximum of " +
+                std::to_string(kMaxNeighbours));
   Neighbourhoods result;
   const std::size_t n = points.size();
   result.k = n == 0 ? 0 : std::min(options.k, n - 1);

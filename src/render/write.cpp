@@ -1,6 +1,7 @@
 #include "pcsketch/render/write.h"
 
 #include <tbb/parallel_for.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -11,6 +12,7 @@
 #include "pcsketch/render/pdf.h"
 #include "pcsketch/render/png.h"
 #include "pcsketch/render/svg.h"
+#include "render/atomic_file.h"
 
 namespace pcsketch::render {
 
@@ -29,11 +31,38 @@ bool is_supported_output(const std::filesystem::path& path) {
 
 void write_drawing(const Drawing& drawing, const std::filesystem::path& path, const RenderOptions& options) {
   const std::string ext = extension(path);
-  if (ext == ".svg") write_svg(drawing, path, options);
-  else if (ext == ".pdf") write_pdf(drawing, path, options);
-  else if (ext == ".png") write_png(drawing, path, options);
-  else if (ext == ".json") write_json(drawing, path);
-  else throw Error(path.string() + ": output: unknown format (use .svg, .pdf, .png or .json)");
+  if (!is_supported_output(path))
+    throw Error(path.string() + ": output: unknown format (use .svg, .pdf, .png or .json)");
+  detail::TempFile file(path);
+  try {
+    if (ext == ".svg")
+      write_svg(drawing, file.path(), options);
+    else if (ext == ".pdf")
+      write_pdf(drawing, file.path(), options);
+    else if (ext == ".png")
+      write_png(drawing, file.path(), options);
+    else
+      write_json(drawing, file.path());
+  } catch (const Error& e) {
+    // The writers name the file they wrote: the temporary one, which the user never asked for.
+    const std::string message = e.what(), temp = file.path().string();
+    throw Error(path.string() + (message.starts_with(temp) ? message.substr(temp.size()) : ": " + message));
+  }
+  file.commit();
+}
+
+void check_output(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  const FileLoc where{path.string(), {}, {}};
+  if (!is_supported_output(path)) throw Error(where, "unknown output format (use .svg, .pdf, .png or .json)");
+  const fs::path target = detail::resolve_target(path);
+  std::error_code ec;
+  const fs::file_status status = fs::status(target, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw Error(where, "exists and is not a regular file; it would not be replaced");
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(dir, ec)) throw Error(where, "the directory " + dir.string() + " does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw Error(where, "the directory " + dir.string() + " is not writable");
 }
 
 void write_drawings(const Drawing& drawing, const std::vector<std::filesystem::path>& paths,

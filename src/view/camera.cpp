@@ -34,7 +34,8 @@ Camera make_camera(const std::vector<Vec3f>& positions, const Vec3d& origin, con
   if (o.projection == Projection::Perspective && !(o.fov_deg > 0 && o.fov_deg < 180))
     throw Error("camera: field of view must be in (0, 180) degrees");
   const Vec3d dir = sight_direction(o);
-  if (!(dir.norm() > 1e-12) || !dir.allFinite()) throw Error("camera: view direction must be a non-zero vector");
+  if (!dir.allFinite() || !(dir.cwiseAbs().maxCoeff() > 1e-12))
+    throw Error("camera: view direction must be a non-zero vector");
   if (o.eye && o.target && o.projection == Projection::Orthographic && (*o.eye - *o.target).norm() == 0)
     throw Error("camera: eye and target coincide");
 
@@ -43,9 +44,11 @@ Camera make_camera(const std::vector<Vec3f>& positions, const Vec3d& origin, con
   cam.width = o.width;
   cam.height = o.height;
   cam.origin = origin;
-  const Vec3d f = dir.normalized();
-  Vec3d up = o.up - o.up.dot(f) * f;
-  if (up.norm() < 1e-6 * std::max(1.0, o.up.norm())) {
+  // Scaled by the largest coordinate first: the norm of (1e308, 1e308, 1e308) overflows and would give a zero axis.
+  const Vec3d f = (dir / dir.cwiseAbs().maxCoeff()).normalized();
+  const Vec3d up_hint = o.up.cwiseAbs().maxCoeff() > 0 ? Vec3d(o.up / o.up.cwiseAbs().maxCoeff()) : o.up;
+  Vec3d up = up_hint - up_hint.dot(f) * f;
+  if (up.norm() < 1e-6 * std::max(1.0, up_hint.norm())) {
     // The up hint is parallel to the sight: take the world axis least aligned with it.
     Eigen::Index axis = 0;
     f.cwiseAbs().minCoeff(&axis);

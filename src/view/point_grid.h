@@ -29,7 +29,8 @@ class PointGrid {
       }
     }
     const Vec extent = (hi - lo_).cwiseMax(Vec::Constant(1e-6f));
-    cell_ = std::max(cell, 1e-6f * extent.maxCoeff());
+    // A NaN or non-positive cell (a radius factor of nan) would never stop the loop below: one cell spans the cloud.
+    cell_ = cell > 0.f && std::isfinite(cell) ? std::max(cell, 1e-6f * extent.maxCoeff()) : extent.maxCoeff();
     // Cap the cell count at about 4 per point (plus a constant): enlarge cells until it fits.
     const double budget = 4.0 * static_cast<double>(points.size()) + 64.0;
     for (;;) {

@@ -49,6 +49,9 @@ struct ReadOptions {
   std::optional<CropBox> crop;
   /// Voxel thinning after cropping (off by default: every point is kept).
   DecimateOptions decimate;
+  /// Keep only the first of points with exactly equal coordinates (one warning counts the others): m copies of a
+  /// point would make every neighbourhood query around it cost m, and they add nothing to the surface.
+  bool collapse_duplicates = true;
 };
 
 /// A cloud as read, plus what the reader noticed.
@@ -58,6 +61,7 @@ struct ReadResult {
   std::string columns;                        ///< text formats: "x,y,z,r,g,b (guessed from the values)"
   Warnings warnings;                          ///< one line each, e.g. the count of dropped non-finite points
   std::size_t dropped_non_finite = 0;         ///< points with a NaN or infinite coordinate, not in `cloud`
+  std::size_t duplicates = 0;                 ///< exact copies of earlier points, not in `cloud`
   std::size_t points_in_file = 0;             ///< points the file holds, dropped ones included
   std::size_t dropped_by_filter = 0;          ///< points outside the crop box or of an unwanted class
   std::optional<DecimateReport> decimation;   ///< set when ReadOptions::decimate asked for thinning
@@ -76,6 +80,16 @@ ReadResult read_point_cloud(const std::string& path, const ReadOptions& options 
 /// extension helps choose the reader and it names the input in error messages.
 ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::string& name_hint,
                                         const ReadOptions& options = {});
+
+/// Largest and smallest bounding-box side a cloud may have to be drawn. Positions are float and squared distances
+/// must stay far inside float range: a cloud in 1e30 or 1e-30 units (or one stray point at 1e30) is refused with a
+/// message saying so rather than analysed into a zero spacing or a null camera.
+inline constexpr double kMaxCloudExtent = 1e12;
+inline constexpr double kMinCloudExtent = 1e-9;
+
+/// Checks that `cloud` spans between kMinCloudExtent and kMaxCloudExtent units (a single point, extent 0, passes).
+/// @throws pcsketch::Error naming `name` and the extent otherwise.
+void check_scale(const PointCloud& cloud, const std::string& name);
 
 /// Reads a triangle mesh from PLY (element "face", list property vertex_indices/vertex_index), OFF or OBJ.
 /// Polygons are triangulated as fans around their first vertex; faces with fewer than 3 vertices are ignored.

@@ -11,9 +11,13 @@
 
 namespace pcsketch::neighbourhood {
 
+/// Most neighbours per point any stage asks for: memory is 8 bytes per neighbour and point, and a k near the point
+/// count would make the lists quadratic (k = 10^6 on 10k points took 772 MB).
+inline constexpr std::size_t kMaxNeighbours = 256;
+
 struct NeighbourhoodOptions {
   /// Neighbours per point, the point itself excluded. 16 is enough for stable PCA normals and a quadric fit
-  /// (6 unknowns) on scanned data while keeping memory at 128 bytes a point.
+  /// (6 unknowns) on scanned data while keeping memory at 128 bytes a point. At most kMaxNeighbours.
   std::size_t k = 16;
   ProgressFn progress;  ///< optional
 };
