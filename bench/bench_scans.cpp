@@ -3,7 +3,7 @@
 // views and scored against the mesh's exact visible occluding contours and sharp edges (3 px at 1024 px,
 // tests/support/mesh_ground_truth.h). Speed and quality read together: seconds of prepare() and of a view, peak RSS.
 //
-//   bench_scans [-n N] [--models a,b] [--conditions clean,0.1%,...] [--views K]
+//   bench_scans [-n N] [--models a,b] [--conditions clean,0.1%,...] [--views K] [--boundary on|off]
 //
 // Each (model, condition) runs in its own process. "total" = prepare + the first view (no reading, no writing).
 
@@ -48,7 +48,8 @@ nlohmann::json score(const Drawing& drawing, LineKind kind, const std::vector<Ve
   return {m.precision, m.recall};
 }
 
-std::string measure(const std::string& model, const Condition& c, std::size_t n, std::size_t views) {
+std::string measure(const std::string& model, const Condition& c, std::size_t n, std::size_t views,
+                    const DrawOptions& options) {
   const Mesh mesh = io::read_mesh(shared_data(model + ".off"));
   PointCloud cloud = io::sample_mesh(mesh, {.n = n,
                                             .noise_sigma_factor = c.noise,
@@ -58,7 +59,6 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
   shuffle(cloud, 2024);
   std::size_t outliers = 0;
   for (const std::uint32_t s : cloud.source_index) outliers += s == io::kOutlier;
-  const DrawOptions options;
   Stopwatch clock;
   const Prepared prepared = prepare(std::move(cloud), options);
   const double prepare_seconds = clock.restart();
@@ -113,11 +113,13 @@ int run(int argc, char** argv) {
   std::size_t n = 200000, views = std::size(kViews);
   std::vector<std::string> models = {"bunny", "camel", "fandisk", "elephant"};
   std::vector<Condition> conditions(std::begin(kConditions), std::end(kConditions));
+  DrawOptions options;
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string flag = argv[a], value = argv[a + 1];
     if (flag == "-n") n = std::stoul(value);
     else if (flag == "--views") views = std::min<std::size_t>(std::stoul(value), std::size(kViews));
     else if (flag == "--models") models = split(value);
+    else if (flag == "--boundary") options.boundary.enabled = value != "off";
     else if (flag == "--conditions") {
       conditions.clear();
       for (const std::string& name : split(value))
@@ -132,7 +134,7 @@ int run(int argc, char** argv) {
   for (const std::string& model : models)
     for (const Condition& c : conditions) {
       const nlohmann::json r =
-          nlohmann::json::parse(run_isolated([&] { return measure(model, c, n, views); }));
+          nlohmann::json::parse(run_isolated([&] { return measure(model, c, n, views, options); }));
       const double total = r["prepare"].get<double>() + r["view"].get<double>();
       const auto& v = r["views"];
       table.add_row({model, c.name, grouped(r["kept"].get<std::size_t>()),

@@ -252,6 +252,22 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber)
       ->group(view_group);
+  cmd->add_flag("!--no-boundary-detection", o.boundary.enabled,
+                "No border of open scans: every point may be outline, and hole rims seen through are drawn as "
+                "contours")
+      ->group(view_group);
+  cmd->add_option("--boundary-gap", o.boundary.gap_threshold_deg,
+                  "A border point's neighbours leave a gap wider than this in its tangent plane, degrees")
+      ->capture_default_str()
+      ->group(view_group);
+  cmd->add_option("--boundary-min-size", o.boundary.min_size_factor,
+                  "Borders spanning less than this, units of h, are small holes: not drawn")
+      ->capture_default_str()
+      ->group(view_group);
+  cmd->add_option("--boundary-radius", o.boundary.tracing.radius_factor,
+                  "Tracing radius of boundary lines, units of h")
+      ->capture_default_str()
+      ->group(view_group);
   cmd->add_flag("!--no-uneven-spacing", o.view.contours.adaptive_spacing,
                 "Outline lengths in units of the mean spacing everywhere (the paper's single radius), not of the "
                 "local spacing where the cloud is sparser")
@@ -332,6 +348,7 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("!--no-ridges", o.lines.ridges, "Leave out ridge lines")->group(out);
   cmd->add_flag("!--no-valleys", o.lines.valleys, "Leave out valley lines")->group(out);
   cmd->add_flag("!--no-hatching", o.lines.hatching, "Leave out shadow hatching and shading")->group(out);
+  cmd->add_flag("!--no-boundaries", o.lines.boundaries, "Leave out the border lines of open scans")->group(out);
   cmd->add_flag("--plotter", o.render.plotter, "Pen-plotter output: centre-lines of one width, no grey fills")
       ->group(out);
   cmd->add_option("--pen-width", o.render.pen_width, "Plotter line width, pixels")

@@ -64,7 +64,9 @@ std::vector<Stroke> line_strokes(const view::ViewResult& view, const LineSelecti
   for (const view::ViewLine& v : view.lines) {
     const LineKind kind = v.line.kind;
     const bool wanted = (kind == LineKind::Contour && selection.contours) ||
-                        (kind == LineKind::Ridge && selection.ridges) || (kind == LineKind::Valley && selection.valleys);
+                        (kind == LineKind::Ridge && selection.ridges) ||
+                        (kind == LineKind::Valley && selection.valleys) ||
+                        (kind == LineKind::Boundary && selection.boundaries);
     if (!wanted) continue;
     lines.push_back(v.line);
     visible.push_back(v.visible);
@@ -96,6 +98,8 @@ nlohmann::json parameters_json(const Prepared& prepared, const DrawOptions& opti
                    {"input_noise_sigma", prepared.surface.input_noise},
                    {"denoised", prepared.surface.denoised},
                    {"normal_noise", prepared.surface.normal_noise},
+                   {"border_points", prepared.boundary.border_points},
+                   {"small_holes", prepared.boundary.small_holes},
                    {"tracing_radius_r", prepared.features.radius},
                    {"ridge_threshold", prepared.features.detection.ridge_threshold},
                    {"valley_threshold", prepared.features.detection.valley_threshold}};
@@ -147,8 +151,10 @@ Drawing style(const Prepared& prepared, const view::ViewResult& view, const Styl
 
 view::ViewResult compute_view(const Prepared& prepared, const view::Camera& camera, const DrawOptions& options,
                               Timings& timings, Warnings& warnings) {
-  view::ViewResult v = view::compute_view(prepared.cloud, prepared.surface, *prepared.scene,
-                                          prepared.features.lines, camera, options.view);
+  std::vector<Polyline> lines = prepared.features.lines;
+  lines.insert(lines.end(), prepared.boundary.lines.begin(), prepared.boundary.lines.end());
+  view::ViewResult v = view::compute_view(prepared.cloud, prepared.surface, *prepared.scene, lines, camera,
+                                          options.view, prepared.boundary.border);
   timings.contour_points += v.timings.contour_points;
   timings.contour_connection += v.timings.contour_connection;
   timings.visibility += v.timings.visibility;
@@ -162,7 +168,7 @@ namespace {
 
 /// Every stage of Timings in pipeline order with its row name (the paper's Table 2 name where it has one): the one
 /// list that total(), all_rows() and += walk.
-constexpr std::array<std::pair<std::string_view, double Timings::*>, 15> kTimingRows{{
+constexpr std::array<std::pair<std::string_view, double Timings::*>, 16> kTimingRows{{
     {"read", &Timings::read},
     {"reorder", &Timings::reorder},
     {"neighbourhoods", &Timings::neighbourhoods},
@@ -172,6 +178,7 @@ constexpr std::array<std::pair<std::string_view, double Timings::*>, 15> kTiming
     {"curvature", &Timings::curvature},
     {"ridge-valley points extraction", &Timings::ridge_valley_points},
     {"ridge-valley points connection", &Timings::ridge_valley_connection},
+    {"boundary", &Timings::boundary},
     {"scene", &Timings::scene},
     {"contour points extraction", &Timings::contour_points},
     {"contour line connection", &Timings::contour_connection},
@@ -212,6 +219,7 @@ Timings& Timings::operator+=(const Timings& o) {
 nlohmann::json DrawOptions::to_json() const {
   return {{"surface", surface_options_json(surface)},
           {"features", features::to_json(features)},
+          {"boundary", boundary.to_json()},
           {"scene", {{"disc_radius_factor", scene.disc_radius_factor}}},
           {"camera", camera_options_json(camera)},
           {"view", view.to_json()},
@@ -220,7 +228,7 @@ nlohmann::json DrawOptions::to_json() const {
           {"render", render.to_json()},
           {"lines",
            {{"contours", lines.contours}, {"ridges", lines.ridges}, {"valleys", lines.valleys},
-            {"hatching", lines.hatching}}},
+            {"hatching", lines.hatching}, {"boundaries", lines.boundaries}}},
           {"min_points", min_points}};
 }
 
@@ -256,7 +264,12 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   p.timings.ridge_valley_connection = p.features.timings.tracing + p.features.timings.joining;
   p.warnings.insert(p.warnings.end(), p.features.warnings.begin(), p.features.warnings.end());
 
-  const auto start = Clock::now();
+  auto start = Clock::now();
+  p.boundary = features::find_boundaries(p.cloud.positions, p.cloud.normals, p.surface.neighbourhoods,
+                                         p.surface.spacing, options.boundary);
+  p.timings.boundary = seconds_since(start);
+
+  start = Clock::now();
   p.local_spacing = view::local_spacing(p.surface.neighbourhoods);
   // The scene of view::build_surface_scene, with the radii kept for shadow splatting.
   p.scene.emplace(p.cloud.positions, p.cloud.normals, p.local_spacing, options.scene);
@@ -300,7 +313,7 @@ StageDrawings stage_drawings(const Prepared& prepared, const view::CameraOptions
       {std::string(kStageNames[0]),
        {{.contours = true, .ridges = false, .valleys = false, .hatching = false}, constant}},
       {std::string(kStageNames[1]),
-       {{.contours = false, .ridges = true, .valleys = true, .hatching = false}, constant}},
+       {{.contours = false, .ridges = true, .valleys = true, .hatching = false, .boundaries = false}, constant}},
       {std::string(kStageNames[2]), {{.contours = true, .ridges = true, .valleys = true, .hatching = false}, constant}},
       {std::string(kStageNames[3]),
        {{.contours = true, .ridges = true, .valleys = true, .hatching = false}, options.thickness}},

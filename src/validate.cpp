@@ -86,6 +86,24 @@ void validate_features(const features::RidgeValleyOptions& f) {
   fraction("--smooth-weight", f.joining.smoothing_weight);
 }
 
+void validate_boundary(const features::BoundaryOptions& b) {
+  open_range("--boundary-gap", b.gap_threshold_deg, 0, 360);
+  in_range("boundary.fold_deg", b.fold_deg, 0, 90, true);
+  in_range("boundary.confirm_factor", b.confirm_factor, 1, 1e3);
+  open_range("boundary.confirm_half_angle_deg", b.confirm_half_angle_deg, 0, 90);
+  non_negative("--boundary-min-size", b.min_size_factor, 1e6);
+  positive("--boundary-radius", b.tracing.radius_factor, 1e4);
+  if (b.tracing.radius) positive("boundary.tracing.radius", *b.tracing.radius);
+  in_range("boundary.tracing.corridor_fraction", b.tracing.corridor_fraction, 0, 1, true);
+  in_range("boundary.tracing.max_turn_deg", b.tracing.max_turn_deg, 0, 90, true);
+  non_negative("boundary.joining.join_distance_alpha", b.joining.join_distance_alpha, 1e4);
+  in_range("boundary.joining.join_angle_beta_deg", b.joining.join_angle_beta_deg, 0, 90);
+  non_negative("boundary.joining.min_length_factor", b.joining.min_length_factor);
+  if (b.joining.min_length) non_negative("boundary.joining.min_length", *b.joining.min_length);
+  in_range("boundary.joining.smoothing_iterations", b.joining.smoothing_iterations, 0, 100);
+  fraction("boundary.joining.smoothing_weight", b.joining.smoothing_weight);
+}
+
 void validate_view(const view::ViewOptions& v, const view::SurfaceSceneOptions& scene) {
   const view::ContourOptions& c = v.contours;
   positive("--contour-radius", c.radius_factor, 1e3);
@@ -196,6 +214,7 @@ void validate(const DrawOptions& options, const view::CameraOptions& camera) {
 void validate(const DrawOptions& options) {
   validate_surface(options.surface);
   validate_features(options.features);
+  validate_boundary(options.boundary);
   in_range("--min-points", static_cast<double>(options.min_points), 0, 1e12);
   validate_view(options.view, options.scene);
   validate_thickness(options.thickness);

@@ -14,6 +14,7 @@
 #include "pcsketch/core/point_cloud.h"
 #include "pcsketch/core/report.h"
 #include "pcsketch/differential/surface.h"
+#include "pcsketch/features/boundary_lines.h"
 #include "pcsketch/features/ridge_valley_lines.h"
 #include "pcsketch/render/options.h"
 #include "pcsketch/stylize/shadow.h"
@@ -30,6 +31,7 @@ struct LineSelection {
   bool ridges = true;
   bool valleys = true;
   bool hatching = true;  ///< shadow hatching and shade regions (paper §VI)
+  bool boundaries = true;  ///< the border of an open scan (kind Boundary; closed clouds have none)
 };
 
 /// Every option of every stage, so that one struct (and the CLI flags bound to its fields) reproduces a drawing.
@@ -37,6 +39,7 @@ struct LineSelection {
 struct DrawOptions {
   differential::SurfaceOptions surface;        ///< neighbourhoods, normals, curvature (view-independent)
   features::RidgeValleyOptions features;       ///< ridge/valley detection (α), tracing (r), joining (β)
+  features::BoundaryOptions boundary;          ///< the border of open scans, small holes left out
   view::SurfaceSceneOptions scene;             ///< the cloud as oriented discs for ray casting
   view::CameraOptions camera;                  ///< default: the paper's orthographic view along +z, 1024 × 1024 px
   view::ViewOptions view;                      ///< contours (z_max, …) and visibility
@@ -67,6 +70,7 @@ struct Timings {
   double curvature = 0;               ///< quadric fit
   double ridge_valley_points = 0;     ///< Table 2 "ridge-valley points extraction" (detection)
   double ridge_valley_connection = 0; ///< Table 2 "ridge-valley points connection" (tracing + joining)
+  double boundary = 0;                ///< border points of open scans, traced into lines
   double scene = 0;                   ///< building the oriented-disc scene
   double contour_points = 0;          ///< Table 2 "contour points extraction"
   double contour_connection = 0;      ///< Table 2 "contour line connection"
@@ -87,6 +91,7 @@ struct Prepared {
   PointCloud cloud;                      ///< reordered, with oriented normals
   differential::Surface surface;         ///< neighbourhoods, spacing h, curvature
   features::RidgeValleyLines features;   ///< ridge and valley lines
+  features::Boundary boundary;           ///< border points and lines (open scans)
   std::vector<float> local_spacing;      ///< #P disc radii of the scene before its factor (view::local_spacing)
   std::optional<view::SurfaceScene> scene;  ///< absent when the cloud was too small to analyse
   Timings timings;

@@ -10,25 +10,14 @@
 #include <limits>
 #include <numeric>
 
+#include "core/union_find.h"
 #include "pcsketch/core/error.h"
 
 namespace pcsketch::clean {
 
 namespace {
 
-/// Union-find with path halving; the root of a set is its smallest index, so the result is deterministic.
-struct Clusters {
-  std::vector<std::uint32_t> parent;
-  explicit Clusters(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void join(std::uint32_t a, std::uint32_t b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
+using pcsketch::detail::Clusters;
 
 float median(std::vector<float> values) {
   const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);

@@ -52,6 +52,7 @@ std::string_view to_string(LineKind kind) {
     case LineKind::Ridge: return "ridge";
     case LineKind::Valley: return "valley";
     case LineKind::Hatch: return "hatch";
+    case LineKind::Boundary: return "boundary";
   }
   return "unknown";
 }

@@ -9,11 +9,14 @@ namespace pcsketch::render::detail {
 
 namespace {
 
-constexpr int kContours = 0, kRidges = 1, kValleys = 2, kHatching = 3, kShading = 4, kHidden = 5;
-constexpr std::array<std::string_view, 6> kLabels = {"1 contours", "2 ridges",  "3 valleys",
-                                                     "4 hatching", "5 shading", "6 hidden"};
+constexpr int kContours = 0, kRidges = 1, kValleys = 2, kHatching = 3, kShading = 4, kHidden = 5, kBoundaries = 6;
+constexpr int kLayers = 7;
+// The border of open scans came after the first six: it takes the next number, so no earlier layer is renamed.
+constexpr std::array<std::string_view, kLayers> kLabels = {"1 contours", "2 ridges", "3 valleys",   "4 hatching",
+                                                           "5 shading",  "6 hidden", "7 boundaries"};
 // Fills under lines, hidden lines under visible ones, contours last so the outline stays crisp on top.
-constexpr std::array<int, 6> kPaintOrder = {kShading, kHidden, kHatching, kValleys, kRidges, kContours};
+constexpr std::array<int, kLayers> kPaintOrder = {kShading, kHidden,     kHatching, kValleys,
+                                                  kRidges,  kBoundaries, kContours};
 
 int layer_of(LineKind kind) {
   switch (kind) {
@@ -21,6 +24,7 @@ int layer_of(LineKind kind) {
     case LineKind::Ridge: return kRidges;
     case LineKind::Valley: return kValleys;
     case LineKind::Hatch: return kHatching;
+    case LineKind::Boundary: return kBoundaries;
   }
   return kContours;
 }
@@ -86,8 +90,8 @@ std::vector<Run> width_runs(const Stroke& s, const RenderOptions& o) {
 }  // namespace
 
 std::vector<PaintLayer> paint_layers(const Drawing& d, const RenderOptions& o) {
-  std::array<PaintLayer, 6> layers;
-  for (int i = 0; i < 6; ++i) {
+  std::array<PaintLayer, kLayers> layers;
+  for (int i = 0; i < kLayers; ++i) {
     layers[i].number = i + 1;
     layers[i].label = kLabels[i];
   }

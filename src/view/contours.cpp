@@ -10,6 +10,7 @@
 #include <span>
 
 #include "pcsketch/core/error.h"
+#include "core/angular_gap.h"
 #include "view/point_grid.h"
 
 namespace pcsketch::view {
@@ -19,54 +20,9 @@ namespace {
 constexpr float kPi = 3.14159265358979f;
 constexpr float kDegToRad = kPi / 180.f;
 
-/// Largest angular gap between the directions `dirs` (unit not required): its size in radians and the unit
-/// direction of its bisector. Fewer than two directions: a full (or one-sided) gap.
-std::pair<float, Vec2f> largest_gap(std::vector<float>& angles, std::span<const Vec2f> dirs) {
-  if (dirs.empty()) return {2 * kPi, Vec2f(-1.f, 0.f)};
-  angles.resize(dirs.size());
-  for (std::size_t i = 0; i < dirs.size(); ++i) angles[i] = std::atan2(dirs[i].y(), dirs[i].x());
-  std::sort(angles.begin(), angles.end());
-  float best = angles.front() + 2 * kPi - angles.back();  // the gap across ±π
-  float start = angles.back();
-  for (std::size_t i = 1; i < angles.size(); ++i) {
-    const float g = angles[i] - angles[i - 1];
-    if (g > best) {
-      best = g;
-      start = angles[i - 1];
-    }
-  }
-  const float mid = start + 0.5f * best;
-  return {best, Vec2f(std::cos(mid), std::sin(mid))};
-}
-
-/// Increases with the angle of d from +x over [0, 4) as atan2 does over [0, 2π), without the trigonometry.
-float pseudo_angle(const Vec2f& d) {
-  const float p = d.x() / (std::abs(d.x()) + std::abs(d.y()));
-  return d.y() < 0 ? 3.f + p : 1.f - p;
-}
-
-/// largest_gap(dirs).first > threshold, without arctangents: the boundary test asks it of every point and most
-/// answers are no. `dirs` (none zero) is reordered by angle.
-bool gap_exceeds(std::vector<Vec2f>& dirs, float threshold) {
-  if (dirs.size() < 2) return threshold < 2 * kPi;
-  std::sort(dirs.begin(), dirs.end(), [](const Vec2f& a, const Vec2f& b) { return pseudo_angle(a) < pseudo_angle(b); });
-  const float cos_t = std::cos(threshold);
-  for (std::size_t i = 0; i < dirs.size(); ++i) {
-    const Vec2f& a = dirs[i];
-    const Vec2f& b = dirs[(i + 1) % dirs.size()];
-    const float cross = a.x() * b.y() - a.y() * b.x();
-    const float dot_bound = cos_t * a.norm() * b.norm();
-    // The counter-clockwise angle from a to b is over 180° where cross < 0; its cosine falls over [0°, 180°] and
-    // rises over [180°, 360°].
-    if (threshold < kPi ? (cross < 0 || a.dot(b) < dot_bound) : (cross < 0 && a.dot(b) > dot_bound)) return true;
-  }
-  return false;
-}
-
-/// Bit of the 45° sector holding direction c: quadrant q (by signs) is bit q, or bit q + 4 past its diagonal.
-unsigned octant_bit(const Vec2f& c) {
-  return 1u << ((c.x() >= 0 ? 0 : 1) + (c.y() >= 0 ? 0 : 2) + (std::abs(c.x()) >= std::abs(c.y()) ? 0 : 4));
-}
+using pcsketch::detail::gap_exceeds;
+using pcsketch::detail::largest_gap;
+using pcsketch::detail::octant_bit;
 
 /// The unit vector pointing to the empty side of heading d: side = +1 on the right of d in (u, v), −1 on the left.
 Vec2f side_of(const Vec2f& d, float side) { return side * Vec2f(d.y(), -d.x()); }
@@ -360,6 +316,19 @@ std::vector<float> spacing_units(const neighbourhood::Neighbourhoods& neighbourh
   return unit;
 }
 
+/// The border points and their nearest `m` neighbours (empty without a border): the band of outline candidates a
+/// border seen edge-on or through a hole makes is about r/2 wide, a border one or two points.
+std::vector<std::uint8_t> border_band(const std::vector<std::uint8_t>& border,
+                                      const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t m) {
+  if (border.empty()) return {};
+  std::vector<std::uint8_t> band = border;
+  m = std::min(m, neighbourhoods.k);
+  for (std::size_t i = 0; i < border.size(); ++i)
+    if (border[i])
+      for (const std::uint32_t j : neighbourhoods.of(i).first(m)) band[j] = 1;
+  return band;
+}
+
 }  // namespace
 
 nlohmann::json ContourOptions::to_json() const {
@@ -387,9 +356,13 @@ nlohmann::json ContourOptions::to_json() const {
 
 ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                                   const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
-                                  const Camera& camera, const ContourOptions& o, float normal_noise) {
+                                  const Camera& camera, const ContourOptions& o, float normal_noise,
+                                  const std::vector<std::uint8_t>& border) {
   if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("contours: the mean spacing h must be positive");
   const std::size_t n = positions.size();
+  if (!border.empty() && (border.size() != n || neighbourhoods.size() != n))
+    throw Error("contours: the border has " + std::to_string(border.size()) + " entries for " + std::to_string(n) +
+                " points (it needs the cloud's neighbourhoods too)");
   if (o.interior && n > 0) {
     if (normals.size() != n) throw Error("contours: interior contours need one normal per point (run analyse_surface)");
     if (neighbourhoods.size() != n || neighbourhoods.k == 0)
@@ -499,8 +472,9 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
         }
       }
     });
+    const std::vector<std::uint8_t> near_border = border_band(border, neighbourhoods, o.interior_neighbours);
     for (std::size_t v = 0; v < valid.size(); ++v)
-      if (is_boundary[v]) {
+      if (is_boundary[v] && (near_border.empty() || !near_border[valid[v]])) {
         cp.boundary.push_back(valid[v]);
         cp.outward.push_back(outward[v]);
       }

@@ -1,5 +1,6 @@
 #include "pcsketch/view/view.h"
 
+#include <algorithm>
 #include <chrono>
 #include <nlohmann/json.hpp>
 
@@ -34,21 +35,24 @@ SurfaceScene build_surface_scene(const PointCloud& cloud, const differential::Su
 }
 
 ViewResult compute_view(const PointCloud& cloud, const differential::Surface& surface, const SurfaceScene& scene,
-                        const std::vector<Polyline>& lines, const Camera& camera, const ViewOptions& options) {
+                        const std::vector<Polyline>& lines, const Camera& camera, const ViewOptions& options,
+                        const std::vector<std::uint8_t>& border) {
   check_analysed(cloud, surface, "view");
   ViewResult result;
   result.camera = camera;
 
   auto start = std::chrono::steady_clock::now();
   result.contour_points = find_contour_points(cloud.positions, cloud.normals, surface.neighbourhoods, surface.spacing,
-                                              camera, options.contours, surface.normal_noise);
+                                              camera, options.contours, surface.normal_noise, border);
   result.timings.contour_points = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
   ContourLines contours = connect_contours(result.contour_points, cloud.positions, surface.spacing, options.contours);
   result.timings.contour_connection = seconds_since(start);
   result.contour_count = contours.outline.size() + contours.interior.size();
-  if (contours.outline.empty() && !cloud.empty())
+  // An open sheet seen face-on has no outline but its border (a boundary line).
+  const bool open_scan = std::find(border.begin(), border.end(), std::uint8_t{1}) != border.end();
+  if (contours.outline.empty() && !cloud.empty() && !open_scan)
     result.warnings.push_back("view: no outline found (is the whole cloud behind the camera?)");
 
   start = std::chrono::steady_clock::now();

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
 
 #include "pcsketch/pipeline.h"
@@ -113,6 +114,59 @@ TEST_P(SphereWithOutliers, FrameAndOutlineAsWithoutThem) {
 
 INSTANTIATE_TEST_SUITE_P(UniformAndClumps, SphereWithOutliers,
                          ::testing::Values(OutlierCase{0.01f, 1}, OutlierCase{0.02f, 20}));
+
+/// Distance from q to the polyline of a stroke's image points, pixels.
+float distance_to(const Stroke& s, const Vec2f& q) {
+  float best = s.image_points.empty() ? 1e9f : (s.image_points[0] - q).norm();
+  for (std::size_t i = 1; i < s.image_points.size(); ++i) {
+    const Vec2f a = s.image_points[i - 1], ab = s.image_points[i] - a;
+    const float t = ab.squaredNorm() > 0 ? std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.f, 1.f) : 0.f;
+    best = std::min(best, (a + t * ab - q).norm());
+  }
+  return best;
+}
+
+/// Fraction of `circle` (sampled every degree) within `tolerance` px of a visible stroke of `kind`.
+double circle_covered(const Drawing& drawing, LineKind kind, const Circle& circle, float tolerance) {
+  std::size_t hit = 0;
+  for (int degree = 0; degree < 360; ++degree) {
+    const float t = static_cast<float>(degree) * 3.14159265f / 180.f;
+    const Vec2f q = circle.centre + circle.radius * Vec2f(std::cos(t), std::sin(t));
+    hit += std::any_of(drawing.strokes.begin(), drawing.strokes.end(), [&](const Stroke& s) {
+      return s.kind == kind && s.visible && distance_to(s, q) <= tolerance;
+    });
+  }
+  return static_cast<double>(hit) / 360.0;
+}
+
+TEST(OpenScan, BandsOfDensityAndAHole) {
+  // A unit sphere of 60k points in bands of width 1/3 across the view at full and at a quarter density (4:1), with a
+  // hole of 30° angular radius facing the camera (which looks along +z): its rim is a circle of radius 1/2.
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  const PointCloud sphere = test::sphere(1.f, {.n = 60000, .seed = 9});
+  PointCloud cloud;
+  for (const Vec3f& p : sphere.positions) {
+    const bool sparse = static_cast<int>(std::floor(3.f * p.x())) % 2 != 0;
+    if (-p.z() > std::cos(30.f * 3.14159265f / 180.f) || (sparse && u(rng) >= 0.25f)) continue;
+    cloud.positions.push_back(p);
+  }
+  const DrawOptions options;
+  const Prepared prepared = prepare(std::move(cloud), options);
+  const DrawResult r = draw_view(prepared, options.camera, options);
+  const Circle outline = projected_unit_sphere(prepared, options.camera);
+  const Circle rim{outline.centre, 0.5f * outline.radius};
+  // The outline closed across the sparse bands; the rim drawn as a boundary (within 2h, about 9 px here), not as a
+  // contour.
+  EXPECT_GE(circle_covered(r.drawing, LineKind::Contour, outline, 3.f), 0.95);
+  EXPECT_GE(circle_covered(r.drawing, LineKind::Boundary, rim, 9.f), 0.80);  // 83% measured: gaps in the sparse bands
+  EXPECT_LE(circle_covered(r.drawing, LineKind::Contour, rim, 9.f), 0.05);
+  std::size_t vertices = 0, on_rim = 0;
+  for (const Stroke& s : r.drawing.strokes)
+    if (s.kind == LineKind::Boundary && s.visible)
+      for (const Vec2f& p : s.image_points) ++vertices, on_rim += rim.distance(p) <= 9.f;
+  EXPECT_GE(static_cast<double>(on_rim), 0.9 * static_cast<double>(vertices));
+}
 
 }  // namespace
 }  // namespace pcsketch

@@ -181,7 +181,7 @@ TEST(Svg, IsWellFormedWithEveryLayerInPaintOrder) {
     labels.push_back(l->attributes.at("inkscape:label"));
   }
   EXPECT_EQ(labels, (std::vector<std::string>{"5 shading", "6 hidden", "4 hatching", "3 valleys", "2 ridges",
-                                              "1 contours"}));
+                                              "7 boundaries", "1 contours"}));
 }
 
 TEST(Svg, XmllintAcceptsIt) {
@@ -265,7 +265,7 @@ TEST(Json, PolylinesMatchWhatTheSvgDraws) {
   Drawing d = sample_drawing();
   for (int i = 0; i < 20; ++i) {
     const float y = 5.f + 4.5f * static_cast<float>(i);
-    d.strokes.push_back(stroke(static_cast<LineKind>(i % 4), {{5.f, y}, {50.f + 0.123f * static_cast<float>(i), y + 1.f}, {95.f, y}},
+    d.strokes.push_back(stroke(static_cast<LineKind>(i % 5), {{5.f, y}, {50.f + 0.123f * static_cast<float>(i), y + 1.f}, {95.f, y}},
                                i % 3 == 0, i % 5 != 0));
   }
   RenderOptions o;
@@ -276,7 +276,8 @@ TEST(Json, PolylinesMatchWhatTheSvgDraws) {
   ASSERT_EQ(json["polylines"].size(), d.strokes.size());
 
   const std::map<std::string, std::string> layer_of = {
-      {"contour", "1 contours"}, {"ridge", "2 ridges"}, {"valley", "3 valleys"}, {"hatch", "4 hatching"}};
+      {"contour", "1 contours"}, {"ridge", "2 ridges"},          {"valley", "3 valleys"},
+      {"hatch", "4 hatching"},   {"boundary", "7 boundaries"}};
   std::map<std::string, std::size_t> next;  // next unread child per layer: strokes keep their order
   for (const nlohmann::json& p : json["polylines"]) {
     const std::string kind = p["kind"];
@@ -405,7 +406,7 @@ TEST(Render, EmptyDrawingGivesEmptyLayersAndABlankImage) {
   d.width = 64;
   d.height = 32;
   const Element svg = XmlParser(svg_string(d)).parse();
-  EXPECT_EQ(svg.layers().size(), 6u);
+  EXPECT_EQ(svg.layers().size(), 7u);
   for (const Element* l : svg.layers()) EXPECT_TRUE(l->children.empty());
   const fs::path path = temp_path("empty.png");
   write_png(d, path);

@@ -10,7 +10,8 @@
 namespace pcsketch {
 
 /// What a line depicts; also the SVG layer it is drawn in.
-enum class LineKind : std::uint8_t { Contour, Ridge, Valley, Hatch };
+/// Boundary: the border of an open scan, where the surface ends (features/boundary_lines.h).
+enum class LineKind : std::uint8_t { Contour, Ridge, Valley, Hatch, Boundary };
 
 std::string_view to_string(LineKind kind);
 

@@ -120,10 +120,15 @@ struct ContourPoints {
 /// @param neighbourhoods the 3D k-NN lists of the cloud (only read when options.interior)
 /// @param spacing mean spacing h, model units (> 0)
 /// @param normal_noise angular noise of the normals, radians (Surface::normal_noise; see persistence_factor)
-/// @throws pcsketch::Error for a non-positive spacing or missing normals/neighbourhoods when interior is on.
+/// @param border empty or #P: border points of an open scan (features::Boundary::border). Neither they nor their
+///   nearest interior_neighbours are outline points: a hole seen through, or the edge of a façade, is where the
+///   surface ends, drawn as a boundary line (or, for a small hole, not at all), not as an occluding contour.
+/// @throws pcsketch::Error for a non-positive spacing, missing normals/neighbourhoods when interior is on, or a
+///   border of the wrong size.
 ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                                   const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
-                                  const Camera& camera, const ContourOptions& options = {}, float normal_noise = 0);
+                                  const Camera& camera, const ContourOptions& options = {}, float normal_noise = 0,
+                                  const std::vector<std::uint8_t>& border = {});
 
 /// The contour lines of one view, all of kind Contour.
 struct ContourLines {

@@ -51,8 +51,10 @@ SurfaceScene build_surface_scene(const PointCloud& cloud, const differential::Su
 /// @param cloud analysed cloud (oriented normals), as left by differential::analyse_surface
 /// @param surface its neighbourhoods and spacing h
 /// @param scene build_surface_scene(cloud, surface), shared by every view
+/// @param border empty or #P: the open scan's border points (features::Boundary::border), which are never outline
 /// @throws pcsketch::Error when the cloud has no normals or the surface does not match it.
 ViewResult compute_view(const PointCloud& cloud, const differential::Surface& surface, const SurfaceScene& scene,
-                        const std::vector<Polyline>& lines, const Camera& camera, const ViewOptions& options = {});
+                        const std::vector<Polyline>& lines, const Camera& camera, const ViewOptions& options = {},
+                        const std::vector<std::uint8_t>& border = {});
 
 }  // namespace pcsketch::view

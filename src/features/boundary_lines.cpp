@@ -1,0 +1,241 @@
+#include "pcsketch/features/boundary_lines.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "core/angular_gap.h"
+#include "core/union_find.h"
+#include "pcsketch/core/error.h"
+#include "pcsketch/neighbourhood/kd_tree.h"
+
+namespace pcsketch::features {
+
+namespace {
+
+constexpr float kDegToRad = 3.14159265358979f / 180.f;
+constexpr std::uint8_t kBorder = 1, kHole = 2;
+constexpr std::uint32_t kMinRimPoints = 8;
+
+/// Right-handed orthonormal tangent frame (u, v) of a unit normal.
+void tangent_frame(const Vec3f& n, Vec3f& u, Vec3f& v) {
+  u = (std::abs(n.x()) < 0.9f ? Vec3f::UnitX() : Vec3f::UnitY()).cross(n).normalized();
+  v = n.cross(u);
+}
+
+/// The gap's bisector in 3D when point i is a border candidate: its neighbours, projected onto its tangent plane,
+/// leave a gap over the threshold, none of them reaches far towards it, and none lies across a fold.
+std::optional<Vec3f> candidate_gap(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
+                                   const neighbourhood::Neighbourhoods& nbh, std::size_t i, const BoundaryOptions& o,
+                                   std::vector<Vec2f>& dirs, std::vector<float>& angles) {
+  const Vec3f& n = normals[i];
+  if (!(n.squaredNorm() > 0.5f)) return std::nullopt;
+  Vec3f u, v;
+  tangent_frame(n, u, v);
+  dirs.clear();
+  unsigned octants = 0;
+  for (const std::uint32_t j : nbh.of(i)) {
+    const Vec3f d = positions[j] - positions[i];
+    const Vec2f c(d.dot(u), d.dot(v));
+    if (c.squaredNorm() > 1e-12f * d.squaredNorm() && c.squaredNorm() > 0) {
+      dirs.push_back(c);
+      octants |= pcsketch::detail::octant_bit(c);
+    }
+  }
+  // All eight 45° sectors hold a neighbour: no gap reaches 90°, and most points settle here without sorting.
+  if (octants == 0xFFu && o.gap_threshold_deg >= 90.f) return std::nullopt;
+  if (!pcsketch::detail::gap_exceeds(dirs, o.gap_threshold_deg * kDegToRad)) return std::nullopt;
+  const Vec2f b = pcsketch::detail::largest_gap(angles, dirs).second;
+  const float reach = nbh.distances[i * nbh.k + nbh.k - 1];
+  for (const Vec2f& c : dirs)
+    if (c.dot(b) > o.edge_band_fraction * reach) return std::nullopt;
+  const float cos_fold = std::cos(o.fold_deg * kDegToRad);
+  for (const std::uint32_t j : nbh.of(i))
+    if (std::abs(normals[j].dot(n)) < cos_fold) return std::nullopt;
+  return Vec3f(b.x() * u + b.y() * v);
+}
+
+/// What lies in the cone around a candidate's gap (see BoundaryOptions::confirm_factor): the distance of the nearest
+/// point there beyond the candidate's shared neighbours, within 45° of its tangent plane.
+class Cone {
+ public:
+  Cone(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals, const neighbourhood::Neighbourhoods& nbh,
+       const BoundaryOptions& o)
+      : positions_(positions), normals_(normals), nbh_(nbh), factor_(o.confirm_factor),
+        cos_cone_(std::cos(o.confirm_half_angle_deg * kDegToRad)) {}
+
+  /// The neighbours of i's neighbours reach about 2r: one of them in the cone settles the sampling's own gaps and
+  /// the changes of density without a radius query.
+  bool filled_nearby(std::size_t i, const Vec3f& bisector) const {
+    const float hole = kHoleFactor * reach(i);
+    for (const std::uint32_t j : nbh_.of(i))
+      for (const std::uint32_t q : nbh_.of(j))
+        if (distance_inside(i, bisector, q) <= hole) return true;
+    return false;
+  }
+
+  /// Nearest distance from i of a point in its cone, out to confirm_factor · r; infinity if there is none.
+  float nearest(std::size_t i, const Vec3f& bisector, const neighbourhood::KdTree& tree,
+                std::vector<std::uint32_t>& found, std::vector<float>& distances) const {
+    tree.radius(positions_[i], factor_ * reach(i), found, distances);
+    float best = kNone;
+    for (const std::uint32_t q : found) best = std::min(best, distance_inside(i, bisector, q));
+    return best;
+  }
+
+  float reach(std::size_t i) const { return nbh_.distances[i * nbh_.k + nbh_.k - 1]; }
+
+  /// Beyond this many r, an empty cone is a hole: where the density changes 4:1, about 6 points of the sparse side
+  /// lie in the cone within it.
+  static constexpr float kHoleFactor = 2.5f;
+  static constexpr float kNone = std::numeric_limits<float>::infinity();
+
+ private:
+  float distance_inside(std::size_t i, const Vec3f& bisector, std::uint32_t q) const {
+    const Vec3f d = positions_[q] - positions_[i];
+    const float distance = d.norm(), r = reach(i);
+    if (distance <= r || distance > factor_ * r) return kNone;
+    const Vec3f& n = normals_[i];
+    const Vec3f in_plane = d - d.dot(n) * n;
+    const float length = in_plane.norm();
+    return std::abs(d.dot(n)) <= length && in_plane.dot(bisector) > cos_cone_ * length ? distance : kNone;
+  }
+
+  const std::vector<Vec3f>& positions_;
+  const std::vector<Vec3f>& normals_;
+  const neighbourhood::Neighbourhoods& nbh_;
+  float factor_, cos_cone_;
+};
+
+/// kBorder where the cone is empty out to confirm_factor · r, kHole where it is empty out to 2.5r (a hole smaller than
+/// the cone), 0 elsewhere. Candidates in parallel, then the neighbours' neighbours, then a radius query for the
+/// candidates they leave (where the density changes, the two rings may stay on the dense side).
+std::vector<std::uint8_t> border_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
+                                        const neighbourhood::Neighbourhoods& nbh, const BoundaryOptions& o) {
+  const std::size_t n = positions.size();
+  std::vector<Vec3f> bisector(n, Vec3f::Zero());
+  const Cone cone(positions, normals, nbh, o);
+  std::vector<std::uint8_t> open(n, 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 2048), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<Vec2f> dirs;
+    std::vector<float> angles;
+    for (std::size_t i = r.begin(); i != r.end(); ++i)
+      if (const auto b = candidate_gap(positions, normals, nbh, i, o, dirs, angles)) {
+        bisector[i] = *b;
+        open[i] = !cone.filled_nearby(i, *b);
+      }
+  });
+  std::vector<std::uint32_t> left;
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (open[i]) left.push_back(i);
+  if (left.empty()) return open;
+  const neighbourhood::KdTree tree(positions);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, left.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::uint32_t> found;
+    std::vector<float> distances;
+    for (std::size_t c = r.begin(); c != r.end(); ++c) {
+      const std::uint32_t i = left[c];
+      const float nearest = cone.nearest(i, bisector[i], tree, found, distances);
+      open[i] = nearest == Cone::kNone                               ? kBorder
+                : nearest > Cone::kHoleFactor * cone.reach(i) ? kHole
+                                                              : std::uint8_t{0};
+    }
+  });
+  return open;
+}
+
+/// The points of `rim` (border or hole rims) in connected sets that hold a border point and span at least
+/// `min_size` (largest side of their bounding box); `small` counts the other sets. Sets of fewer than kMinRimPoints
+/// are cleared from `rim`: the rim of a hole a cone wide holds dozens.
+std::vector<std::uint8_t> drawn_sets(const std::vector<Vec3f>& positions, const neighbourhood::Neighbourhoods& nbh,
+                                     std::vector<std::uint8_t>& rim, float min_size, std::size_t& small) {
+  const std::size_t n = positions.size();
+  pcsketch::detail::Clusters sets(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (rim[i])
+      for (const std::uint32_t j : nbh.of(i))
+        if (rim[j]) sets.join(i, j);
+  std::vector<Eigen::AlignedBox3f> box(n);
+  std::vector<std::uint8_t> bordered(n, 0), drawn(n, 0);
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (rim[i]) {
+      box[sets.find(i)].extend(positions[i]);
+      bordered[sets.find(i)] |= rim[i] == kBorder;
+    }
+  const auto kept = [&](std::uint32_t root) { return bordered[root] && box[root].sizes().maxCoeff() >= min_size; };
+  std::vector<std::uint32_t> count(n, 0);
+  for (std::uint32_t i = 0; i < n; ++i) count[sets.find(i)] += rim[i] != 0;
+  small = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!rim[i]) continue;
+    const std::uint32_t root = sets.find(i);
+    if (count[root] < kMinRimPoints) {
+      rim[i] = 0;  // a stray mark: a random gap of the sampling, a change of density, not the rim of anything
+      continue;
+    }
+    if (root == i && !kept(root)) ++small;
+    drawn[i] = kept(root);
+  }
+  return drawn;
+}
+
+}  // namespace
+
+nlohmann::json BoundaryOptions::to_json() const {
+  return {{"enabled", enabled},
+          {"gap_threshold_deg", gap_threshold_deg},
+          {"fold_deg", fold_deg},
+          {"confirm_factor", confirm_factor},
+          {"confirm_half_angle_deg", confirm_half_angle_deg},
+          {"edge_band_fraction", edge_band_fraction},
+          {"min_size_factor", min_size_factor},
+          {"tracing", features::to_json(tracing)},
+          {"joining", features::to_json(joining)}};
+}
+
+Boundary find_boundaries(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
+                         const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
+                         const BoundaryOptions& options) {
+  const std::size_t n = positions.size();
+  if (normals.size() != n || neighbourhoods.size() != n)
+    throw Error("boundary: " + std::to_string(normals.size()) + " normals and " +
+                std::to_string(neighbourhoods.size()) + " neighbourhoods for " + std::to_string(n) + " points");
+  if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("boundary: the mean spacing h must be positive");
+  if (!(options.gap_threshold_deg > 0 && options.gap_threshold_deg < 360) ||
+      !(options.confirm_half_angle_deg > 0 && options.confirm_half_angle_deg < 90) ||
+      !(options.fold_deg > 0 && options.fold_deg <= 90) || !(options.confirm_factor >= 1) ||
+      !(options.min_size_factor >= 0) || !(options.edge_band_fraction > 0 && options.edge_band_fraction <= 1) ||
+      !std::isfinite(options.confirm_factor + options.min_size_factor))
+    throw Error("boundary: an option is out of range (gap in (0, 360), cone in (0, 90), fold in (0, 90] degrees, "
+                "confirm factor ≥ 1, edge band in (0, 1], minimum size ≥ 0)");
+  Boundary result;
+  if (!options.enabled || n == 0 || neighbourhoods.k == 0) return result;
+  result.border = border_points(positions, normals, neighbourhoods, options);
+
+  const std::vector<std::uint8_t> drawn =
+      drawn_sets(positions, neighbourhoods, result.border, options.min_size_factor * spacing, result.small_holes);
+  std::vector<PointLabel> labels(n, PointLabel::None);
+  for (std::size_t i = 0; i < n; ++i)
+    if (drawn[i]) {
+      labels[i] = PointLabel::Ridge;
+      ++result.border_points;
+    }
+  if (result.border_points == 0) return result;
+  TraceResult traced = trace_lines(positions, labels, std::vector<float>(n, 0.f), spacing, options.tracing);
+  JoinResult joined = join_lines(std::move(traced.lines), traced.radius, spacing, options.joining);
+  for (Polyline& line : joined.lines) {
+    line.kind = LineKind::Boundary;
+    line.curvature.clear();
+  }
+  result.lines = std::move(joined.lines);
+  return result;
+}
+
+}  // namespace pcsketch::features
