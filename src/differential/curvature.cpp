@@ -181,53 +181,68 @@ double noise_estimate(const std::vector<double>& residual, std::vector<double>& 
   return std::sqrt(noise_share) * outer_median;
 }
 
-/// Points that get their own wide fit: every `every`-th in the (space-filling-curve) order, and any point none of
-/// whose shared neighbours is one of those.
-std::vector<std::uint8_t> fit_subset(const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t every) {
-  const std::size_t n = neighbourhoods.size();
-  std::vector<std::uint8_t> fitted(n, 0);
-  if (every <= 1 || neighbourhoods.k == 0) {
-    fitted.assign(n, 1);
-    return fitted;
-  }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      const auto nb = neighbourhoods.of(i);
-      fitted[i] = i % every == 0 || std::none_of(nb.begin(), nb.end(), [&](std::uint32_t j) { return j % every == 0; });
-    }
-  });
-  return fitted;
-}
+/// The k nearest neighbours of the points of one group of consecutive indices (space-filling-curve order keeps them
+/// a few h apart), from one radius query around the group instead of one k-NN query per point: a k-NN query of 512
+/// keeps its result sorted as it goes and cost ~75 µs a point, most of a noisy cloud's time. The query's radius holds
+/// each point's estimated k-th distance with a margin; a point whose k-th neighbour lies beyond what the ball surely
+/// holds for it gets its own k-NN query, so the sets are exactly the k nearest.
+class GroupNeighbours {
+ public:
+  static constexpr std::size_t kGroup = 16;
 
-/// The points without a wide fit of their own take the mean shape operator Σ k d dᵀ of their fitted neighbours,
-/// seen in their own tangent plane: the wide fits span several times the subset's spacing, so their curvature
-/// varies little between neighbours.
-void spread_from_subset(Curvature& c, const std::vector<Vec3f>& normals,
-                        const neighbourhood::Neighbourhoods& neighbourhoods, const std::vector<std::uint8_t>& fitted) {
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, fitted.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      if (fitted[i]) continue;
-      Eigen::Matrix3d shape = Eigen::Matrix3d::Zero();
-      for (const std::uint32_t j : neighbourhoods.of(i)) {
-        if (!fitted[j]) continue;
-        const Vec3d d1 = c.dir1[j].cast<double>(), d2 = c.dir2[j].cast<double>();
-        shape += c.k1[j] * d1 * d1.transpose() + c.k2[j] * d2 * d2.transpose();
+  GroupNeighbours(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& shared,
+                  const neighbourhood::KdTree& tree, std::size_t k)
+      : points_(points), shared_(shared), tree_(tree), k_(k),
+        widen_(1.25f * std::sqrt(static_cast<float>(k) / static_cast<float>(std::max<std::size_t>(shared.k, 1)))) {}
+
+  /// Gathers the ball around points [begin, end).
+  void gather(std::size_t begin, std::size_t end) {
+    centre_ = Vec3f::Zero();
+    for (std::size_t i = begin; i < end; ++i) centre_ += points_[i];
+    centre_ /= static_cast<float>(end - begin);
+    float radius = 0;
+    for (std::size_t i = begin; i < end; ++i) radius = std::max(radius, (points_[i] - centre_).norm() + estimate(i));
+    radius_ = radius;
+    tree_.radius_unsorted(centre_, radius_, ball_);
+  }
+
+  /// The k nearest neighbours of point i of the gathered group (i excluded), in no particular order.
+  const std::vector<std::uint32_t>& of(std::size_t i) {
+    const Vec3f& p = points_[i];
+    candidates_.clear();
+    for (const std::uint32_t j : ball_)
+      if (j != i) candidates_.emplace_back((points_[j] - p).squaredNorm(), j);
+    const float sure = radius_ - (p - centre_).norm();  // the ball holds every point this close to i
+    if (candidates_.size() >= k_) {
+      std::nth_element(candidates_.begin(), candidates_.begin() + static_cast<std::ptrdiff_t>(k_ - 1),
+                       candidates_.end());
+      if (std::sqrt(candidates_[k_ - 1].first) <= sure) {
+        found_.resize(k_);
+        for (std::size_t m = 0; m < k_; ++m) found_[m] = candidates_[m].second;
+        return found_;
       }
-      Vec3d u, v;
-      tangent_frame(normals[i].cast<double>().normalized(), u, v);
-      Eigen::Matrix2d m;
-      m << u.dot(shape * u), u.dot(shape * v), v.dot(shape * u), v.dot(shape * v);
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(m);
-      const double count = static_cast<double>(std::count_if(neighbourhoods.of(i).begin(), neighbourhoods.of(i).end(),
-                                                             [&](std::uint32_t j) { return fitted[j] != 0; }));
-      const Eigen::Vector2d e1 = eigen.eigenvectors().col(1);  // ascending: column 1 is the larger curvature
-      c.k1[i] = static_cast<float>(eigen.eigenvalues()[1] / count);
-      c.k2[i] = static_cast<float>(eigen.eigenvalues()[0] / count);
-      c.dir1[i] = Vec3d(e1.x() * u + e1.y() * v).normalized().cast<float>();
-      c.dir2[i] = normals[i].cross(c.dir1[i]).normalized();
     }
-  });
-}
+    tree_.knn_of_point(i, k_, found_, distances_);
+    return found_;
+  }
+
+ private:
+  /// Estimated distance of the k-th neighbour: the shared k-th distance scaled by √(k / shared k), with a margin.
+  float estimate(std::size_t i) const {
+    return shared_.k > 0 ? widen_ * shared_.distances[i * shared_.k + shared_.k - 1] : 0.f;
+  }
+
+  const std::vector<Vec3f>& points_;
+  const neighbourhood::Neighbourhoods& shared_;
+  const neighbourhood::KdTree& tree_;
+  std::size_t k_;
+  float widen_;
+  Vec3f centre_ = Vec3f::Zero();
+  float radius_ = 0;
+  std::vector<std::uint32_t> ball_, found_;
+  std::vector<float> distances_;
+  std::vector<std::pair<float, std::uint32_t>> candidates_;
+};
 
 Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                    const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree* given_tree,
@@ -248,31 +263,38 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   const std::size_t stride = std::max<std::size_t>(1, n / 16384);
 
   std::optional<neighbourhood::KdTree> own_tree;
-  // Fits over k neighbours (from the tree when wider than the shared lists) at every point, or only where `fitted`.
-  const auto run = [&](std::size_t k, bool from_tree, const std::vector<std::uint8_t>* fitted) {
+  const auto store = [&](std::size_t i, const PointFit& fit) {
+    result.k1[i] = fit.k1;
+    result.k2[i] = fit.k2;
+    result.dir1[i] = fit.dir1;
+    result.dir2[i] = fit.dir2;
+    residual[i] = fit.residual;
+  };
+  // Fits over the shared neighbourhoods (the first pass also takes the inner residuals).
+  const auto run_shared = [&](std::size_t k) {
     result.fit_neighbours = k;
-    const neighbourhood::KdTree* tree = given_tree;
-    if (from_tree && !tree) tree = &own_tree.emplace(points);
     pcsketch::detail::parallel_chunks(n, options.progress, "curvature", [&](std::size_t begin, std::size_t end) {
-      thread_local std::vector<std::uint32_t> found;
-      thread_local std::vector<float> distances;
       for (std::size_t i = begin; i < end; ++i) {
-        if (fitted && !(*fitted)[i]) continue;
-        const std::uint32_t* nb = neighbourhoods.indices.data() + i * neighbourhoods.k;
-        std::size_t count = k;
-        if (from_tree) {
-          tree->knn_of_point(i, k, found, distances);
-          nb = found.data();
-          count = found.size();
-        }
         const bool sampled = !inner_residual.empty() && i % stride == 0;
-        const PointFit fit =
-            fit_point(points, i, normals[i], nb, count, sampled ? &inner_residual[i / stride] : nullptr);
-        result.k1[i] = fit.k1;
-        result.k2[i] = fit.k2;
-        result.dir1[i] = fit.dir1;
-        result.dir2[i] = fit.dir2;
-        residual[i] = fit.residual;
+        store(i, fit_point(points, i, normals[i], neighbourhoods.indices.data() + i * neighbourhoods.k, k,
+                           sampled ? &inner_residual[i / stride] : nullptr));
+      }
+    });
+  };
+  // Fits over k neighbours from the tree (wider than the shared lists), gathered a group of points at a time.
+  const auto run_wide = [&](std::size_t k) {
+    result.fit_neighbours = k;
+    const neighbourhood::KdTree& tree = given_tree ? *given_tree : own_tree.emplace(points);
+    const std::size_t groups = (n + GroupNeighbours::kGroup - 1) / GroupNeighbours::kGroup;
+    pcsketch::detail::parallel_chunks(groups, options.progress, "curvature", [&](std::size_t begin, std::size_t end) {
+      GroupNeighbours near(points, neighbourhoods, tree, k);
+      for (std::size_t g = begin; g < end; ++g) {
+        const std::size_t first = g * GroupNeighbours::kGroup, last = std::min(n, first + GroupNeighbours::kGroup);
+        near.gather(first, last);
+        for (std::size_t i = first; i < last; ++i) {
+          const std::vector<std::uint32_t>& nb = near.of(i);
+          store(i, fit_point(points, i, normals[i], nb.data(), nb.size(), nullptr));
+        }
       }
     });
   };
@@ -281,22 +303,18 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   const std::size_t available = n == 0 ? 0 : n - 1;
   if (options.k != 0) {
     const std::size_t k = std::min(options.k, available);
-    run(k, k > shared, nullptr);
+    if (k > shared) run_wide(k);
+    else run_shared(k);
   } else {
     if (shared >= kInnerFit + 4) inner_residual.resize((n + stride - 1) / stride);
-    run(shared, false, nullptr);
+    run_shared(shared);
     result.noise_sigma = static_cast<float>(noise_estimate(residual, inner_residual, stride, shared));
     if (options.adapt_to_noise && options.noise_tolerance > 0 && shared > 0) {
       const double wanted =
           8.0 * result.noise_sigma * std::sqrt(kPi * density(neighbourhoods)) / options.noise_tolerance;
       const std::size_t k = std::min({static_cast<std::size_t>(std::ceil(wanted)), options.max_k, available});
       // The fit's curvature noise falls as 1/√k: under 1.25·shared (< 11% less noise) the refit is not worth it.
-      if (4 * k > 5 * shared) {
-        const std::size_t every = options.wide_fit_share == 0 ? 1 : std::max<std::size_t>(1, k / options.wide_fit_share);
-        const std::vector<std::uint8_t> fitted = fit_subset(neighbourhoods, every);
-        run(k, true, &fitted);
-        spread_from_subset(result, normals, neighbourhoods, fitted);
-      }
+      if (4 * k > 5 * shared) run_wide(k);
       if (wanted > static_cast<double>(options.max_k) && options.max_k < available)
         result.warnings.push_back("curvature: the noise (σ ≈ " + std::to_string(result.noise_sigma) +
                                   ") calls for fits over " + std::to_string(static_cast<std::size_t>(wanted)) +

@@ -182,15 +182,26 @@ void KdTree::knn_of_point(std::size_t i, std::size_t k, std::vector<std::uint32_
   indices.erase(self);
 }
 
+/// (index, squared distance) of every point within `radius` of `query`, in the tree's order.
+std::vector<std::pair<std::uint32_t, float>>& KdTree::within(const Vec3f& query, float radius) const {
+  thread_local std::vector<std::pair<std::uint32_t, float>> hits;
+  hits.clear();
+  if (!(radius >= 0) || size() == 0) return hits;
+  InclusiveRadius result(radius, hits);
+  impl_->index.findNeighbors(result, query.data(), nanoflann::SearchParams());
+  return hits;
+}
+
+void KdTree::radius_unsorted(const Vec3f& query, float radius, std::vector<std::uint32_t>& indices) const {
+  indices.clear();
+  for (const auto& hit : within(query, radius)) indices.push_back(hit.first);
+}
+
 void KdTree::radius(const Vec3f& query, float radius, std::vector<std::uint32_t>& indices,
                     std::vector<float>& distances) const {
   indices.clear();
   distances.clear();
-  if (!(radius >= 0) || size() == 0) return;
-  thread_local std::vector<std::pair<std::uint32_t, float>> hits;
-  hits.clear();
-  InclusiveRadius result(radius, hits);
-  impl_->index.findNeighbors(result, query.data(), nanoflann::SearchParams());
+  std::vector<std::pair<std::uint32_t, float>>& hits = within(query, radius);
   std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
     return a.second < b.second || (a.second == b.second && a.first < b.first);
   });

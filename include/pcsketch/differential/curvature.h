@@ -24,11 +24,6 @@ struct CurvatureOptions {
   float noise_tolerance = 0.0065f;
   /// Upper bound on the automatic fit size (time grows linearly with it; memory only per thread).
   std::size_t max_k = 512;
-  /// A widened fit over k neighbours runs at one point in max(1, k / wide_fit_share) (and wherever no neighbour has
-  /// one); the others take the mean shape operator of their fitted neighbours, which costs share / k of fitting
-  /// everywhere. 0 (default) fits everywhere: with 32, a noisy cube's edges were traced over 30–68% of their length
-  /// instead of ≥ 90% (the mean operator flattens the crest that non-maximum suppression looks for).
-  std::size_t wide_fit_share = 0;
   ProgressFn progress;  ///< optional
 };
 

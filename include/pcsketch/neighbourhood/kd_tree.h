@@ -20,6 +20,9 @@ class KdTree {
 
   /// The k nearest points to `query` (fewer if the tree holds fewer), nearest first; ties in index order.
   void knn(const Vec3f& query, std::size_t k, std::vector<std::uint32_t>& indices, std::vector<float>& distances) const;
+  /// The indices of all points within `radius` of `query`, in no particular order (no sorting: for callers that
+  /// select among them themselves).
+  void radius_unsorted(const Vec3f& query, float radius, std::vector<std::uint32_t>& indices) const;
   /// All points within `radius` of `query`, nearest first.
   void radius(const Vec3f& query, float radius, std::vector<std::uint32_t>& indices,
               std::vector<float>& distances) const;
@@ -30,6 +33,8 @@ class KdTree {
   std::size_t size() const;
 
  private:
+  /// (index, squared distance) of the points within `radius`, unsorted, in a per-thread buffer.
+  std::vector<std::pair<std::uint32_t, float>>& within(const Vec3f& query, float radius) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
