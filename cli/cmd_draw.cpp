@@ -84,9 +84,6 @@ std::vector<std::string> stage_extensions(const std::vector<std::string>& output
   return extensions;
 }
 
-/// One file, however it is spelled (a/../b.svg, ./b.svg, a symlink to it).
-fs::path same_file_key(const std::string& path) { return fs::weakly_canonical(fs::absolute(path)); }
-
 /// Every output checked before the input is read: format, directory, no file written twice, --stages never
 /// overwriting an -o file.
 void check_outputs(const DrawArgs& args) {

@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "options.h"
+#include "pcsketch/core/atomic_file.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/differential/surface.h"
 #include "pcsketch/features/ridge_valley_lines.h"
@@ -95,9 +96,21 @@ void write_lines_json(const std::string& path, const PointCloud& cloud, const di
                                 {"tracing", result.timings.tracing},
                                 {"joining", result.timings.joining}}},
                               {"lines", std::move(lines)}};
-  std::ofstream out(path);
+  TempFile temp(path);
+  std::ofstream out(temp.path());
   out << doc.dump(1) << "\n";
-  if (!out) throw Error(path + ": cannot write the lines JSON file");
+  out.close();
+  if (!out) throw Error(FileLoc{path, {}, {}}, "cannot write the lines JSON file");
+  temp.commit();
+}
+
+/// -o and --lines checked before the input is read: writable, and two different files.
+void check_outputs(const FeaturesArgs& args) {
+  check_output_path("--output", args.out_path);
+  if (args.lines_path.empty()) return;
+  check_output_path("--lines", args.lines_path);
+  if (same_file_key(args.lines_path) == same_file_key(args.out_path))
+    throw OptionError("--lines", quote(args.lines_path) + " is also the --output file");
 }
 
 void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
@@ -106,6 +119,7 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   checked.surface = args.surface;
   checked.features = args.features;
   validate(checked);
+  check_outputs(args);
   io::ReadResult read = io::read_point_cloud(args.in_path, args.read);
   io::check_scale(read.cloud, args.in_path);
   print_warnings(global, read.warnings);
