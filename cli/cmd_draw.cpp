@@ -128,6 +128,7 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
   auto start = Clock::now();
   io::ReadResult read = io::read_point_cloud(args.input, args.read);
   io::check_scale(read.cloud, args.input);
+  validate_memory(options, read.cloud.size(), args.input);
   const std::string reduction = describe_reduction(read);
   timings.read = seconds_since(start);
   print_warnings(global, read.warnings);
@@ -171,6 +172,7 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("INPUT", args->input, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)")
       ->required();
   add_read_options(cmd, args->read);
+  add_memory_option(cmd, o.max_memory_gb);
   cmd->add_option("-o,--output", args->outputs, "Output file; format from the extension: .svg .png .pdf (repeatable)");
   cmd->add_option("--json", args->json, "Write every stroke as JSON (world and image coordinates, widths)");
   cmd->add_option("--stages", args->stages,

@@ -212,6 +212,14 @@ void add_ridge_valley_options(CLI::App* cmd, features::RidgeValleyOptions& optio
               jgroup);
 }
 
+void add_memory_option(CLI::App* cmd, std::optional<double>& target) {
+  cmd->add_option("--max-memory", target,
+                  "Refuse a cloud estimated to need more memory than this, GB, before the analysis starts (about "
+                  "256 + 8 x --neighbours bytes a point, plus the image buffers); default: the machine's memory")
+      ->check(CLI::PositiveNumber)
+      ->group("Input");
+}
+
 std::filesystem::path same_file_key(const std::string& path) {
   return std::filesystem::weakly_canonical(std::filesystem::absolute(path));
 }

@@ -87,6 +87,7 @@ TEST_F(CliHostile, EveryNumericFlagWithNanInfNegativeZeroAndHuge) {
                                           "--hatch-spacing",
                                           "--pen-width",
                                           "--page-width-mm",
+                                          "--max-memory",
                                           "--threads"};
   for (const std::string& flag : flags)
     for (const char* value : {"nan", "inf", "-1", "0", "1e308", "1e309"}) {
@@ -227,6 +228,26 @@ TEST_F(CliHostile, FeaturesAndSampleOutputsAreCheckedBeforeTheWork) {
   ASSERT_EQ(limited(features + " -o " + path("link.ply")).status, 0);
   EXPECT_TRUE(fs::is_symlink(path("link.ply")));
   EXPECT_EQ(slurp(path("real.ply")).substr(0, 4), "ply\n");
+}
+
+TEST_F(CliHostile, MemoryIsEstimatedFromTheImageAndThePointsBeforeTheAnalysis) {
+  // 300 points at 256 + 8 x 16 bytes and a 96x96 image (9216 + 48384 bytes): 172800 bytes in all.
+  const CommandRun over = limited(draw("--max-memory 0.0001727"));
+  EXPECT_EQ(over.status, 1) << over.err;
+  EXPECT_EQ(lines(over.err), 1u) << over.err;
+  EXPECT_NE(over.err.find("--max-memory: " + path("s.xyz") +
+                          ": 300 points (--neighbours 16) and a 96x96 image need about 0.000173 GB"),
+            std::string::npos)
+      << over.err;
+  EXPECT_FALSE(fs::exists(path("o.svg")));
+  EXPECT_EQ(limited(draw("--max-memory 0.0001729")).status, 0);
+  // features has no image: 300 x 384 = 115200 bytes.
+  const std::string features = "-q features " + path("s.xyz") + " -o " + path("f.ply") + " --max-memory ";
+  const CommandRun refused = limited(features + "0.0001151");
+  EXPECT_EQ(refused.status, 1) << refused.err;
+  EXPECT_NE(refused.err.find("--max-memory: " + path("s.xyz") + ": 300 points"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(path("f.ply")));
+  EXPECT_EQ(limited(features + "0.0001153").status, 0);
 }
 
 TEST_F(CliHostile, FifoInputIsRefusedWithoutBlocking) {
