@@ -59,7 +59,10 @@ CLI::Option* add_vec3(CLI::App* cmd, const std::string& name, const std::string&
 void print_timings(const Timings& t, const Prepared& prepared, const std::string& reduction) {
   const auto paper = t.table_rows();
   std::printf("%-34s %10s  %s\n", "stage", "seconds", "(paper Table 2 row)");
-  for (const auto& [name, seconds] : t.all_rows()) {
+  for (const auto& stage : t.all_rows()) {
+    // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
+    const std::string_view name = stage.first;
+    const double seconds = stage.second;
     const bool in_paper = std::any_of(paper.begin(), paper.end(), [&](const auto& row) { return row.first == name; });
     std::printf("%-34.*s %10.4f  %s\n", static_cast<int>(name.size()), name.data(), seconds, in_paper ? "*" : "");
   }
