@@ -8,6 +8,7 @@
 
 #include "commands.h"
 #include "options.h"
+#include "pcsketch/core/atomic_file.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/differential/surface.h"
 #include "pcsketch/features/ridge_valley_lines.h"
@@ -29,6 +30,7 @@ struct FeaturesArgs {
   io::ReadOptions read;
   differential::SurfaceOptions surface;
   features::RidgeValleyOptions features;
+  std::optional<double> max_memory_gb;
   bool ascii = false;
 };
 
@@ -95,9 +97,21 @@ void write_lines_json(const std::string& path, const PointCloud& cloud, const di
                                 {"tracing", result.timings.tracing},
                                 {"joining", result.timings.joining}}},
                               {"lines", std::move(lines)}};
-  std::ofstream out(path);
+  TempFile temp(path);
+  std::ofstream out(temp.path());
   out << doc.dump(1) << "\n";
-  if (!out) throw Error(path + ": cannot write the lines JSON file");
+  out.close();
+  if (!out) throw Error(FileLoc{path, {}, {}}, "cannot write the lines JSON file");
+  temp.commit();
+}
+
+/// -o and --lines checked before the input is read: writable, and two different files.
+void check_outputs(const FeaturesArgs& args) {
+  check_output_path("--output", args.out_path);
+  if (args.lines_path.empty()) return;
+  check_output_path("--lines", args.lines_path);
+  if (same_file_key(args.lines_path) == same_file_key(args.out_path))
+    throw OptionError("--lines", quote(args.lines_path) + " is also the --output file");
 }
 
 void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
@@ -105,9 +119,14 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   DrawOptions checked;
   checked.surface = args.surface;
   checked.features = args.features;
+  checked.max_memory_gb = args.max_memory_gb;
   validate(checked);
+  check_outputs(args);
   io::ReadResult read = io::read_point_cloud(args.in_path, args.read);
   io::check_scale(read.cloud, args.in_path);
+  validate_memory(point_bytes(args.surface, read.cloud.size()), args.max_memory_gb,
+                  args.in_path + ": " + std::to_string(read.cloud.size()) + " points (--neighbours " +
+                      std::to_string(args.surface.neighbourhood.k) + ")");
   print_warnings(global, read.warnings);
   PointCloud& cloud = read.cloud;
   differential::SurfaceOptions surface_options = args.surface;
@@ -164,6 +183,7 @@ void add_features_command(CLI::App& app, const GlobalOptions& global) {
       "features", "Ridge/valley points and lines (paper IV.A): per-point k1, k2, label as PLY scalar fields, lines as JSON");
   cmd->add_option("IN", args->in_path, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ")->required();
   add_read_options(cmd, args->read);
+  add_memory_option(cmd, args->max_memory_gb);
   cmd->add_option("-o,--output", args->out_path,
                   "Output PLY: x y z, nx ny nz, k1 k2 k_feature (float, 1/model units), label (uchar: 0 none, "
                   "1 ridge, 2 valley, 3 outlier left out of the analysis); every point of the input, in its order")

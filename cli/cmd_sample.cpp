@@ -4,6 +4,7 @@
 #include <string>
 
 #include "commands.h"
+#include "options.h"
 #include "pcsketch/io/ply.h"
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/io/sample_mesh.h"
@@ -19,6 +20,7 @@ struct SampleArgs {
 };
 
 void run_sample(const SampleArgs& args) {
+  check_output_path("--output", args.out_path);
   const Mesh mesh = io::read_mesh(args.mesh_path);
   const PointCloud cloud = io::sample_mesh(mesh, args.sample);
   io::PlyWriteOptions write{.format = args.ascii ? io::PlyFormat::Ascii : io::PlyFormat::BinaryLittleEndian};

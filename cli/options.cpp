@@ -7,7 +7,9 @@
 #include <optional>
 #include <sstream>
 
+#include "pcsketch/core/atomic_file.h"
 #include "pcsketch/core/error.h"
+#include "pcsketch/validate.h"
 
 namespace pcsketch::cli {
 
@@ -208,6 +210,26 @@ void add_ridge_valley_options(CLI::App* cmd, features::RidgeValleyOptions& optio
               CLI::Range(0, 100), jgroup);
   add_checked(cmd, "--smooth-weight", jo.smoothing_weight, "Weight of one smoothing pass, 0-1", CLI::Range(0.0, 1.0),
               jgroup);
+}
+
+void add_memory_option(CLI::App* cmd, std::optional<double>& target) {
+  cmd->add_option("--max-memory", target,
+                  "Refuse a cloud estimated to need more memory than this, GB, before the analysis starts (about "
+                  "256 + 8 x --neighbours bytes a point, plus the image buffers); default: the machine's memory")
+      ->check(CLI::PositiveNumber)
+      ->group("Input");
+}
+
+std::filesystem::path same_file_key(const std::string& path) {
+  return std::filesystem::weakly_canonical(std::filesystem::absolute(path));
+}
+
+void check_output_path(const std::string& flag, const std::string& path) {
+  try {
+    check_writable(path);
+  } catch (const Error& e) {
+    throw OptionError(flag, e.what());
+  }
 }
 
 }  // namespace pcsketch::cli

@@ -3,7 +3,9 @@
 // the same names, checks and defaults and describe them in the same words.
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,5 +42,14 @@ void add_surface_options(CLI::App* cmd, differential::SurfaceOptions& surface);
 /// Ridge/valley flags of the paper's §IV.A (detection, tracing, joining) bound to `options`, which must outlive the
 /// parse.
 void add_ridge_valley_options(CLI::App* cmd, features::RidgeValleyOptions& options);
+
+/// --max-memory GB bound to `target` (draw, features), which must outlive the parse.
+void add_memory_option(CLI::App* cmd, std::optional<double>& target);
+
+/// One file, however it is spelled (a/../b.svg, ./b.svg, a symlink to it): for the "written twice" checks.
+std::filesystem::path same_file_key(const std::string& path);
+
+/// check_writable(path) before any work, its failure an OptionError naming `flag` (exit 1).
+void check_output_path(const std::string& flag, const std::string& path);
 
 }  // namespace pcsketch::cli

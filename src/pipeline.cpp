@@ -229,11 +229,13 @@ nlohmann::json DrawOptions::to_json() const {
           {"lines",
            {{"contours", lines.contours}, {"ridges", lines.ridges}, {"valleys", lines.valleys},
             {"hatching", lines.hatching}, {"boundaries", lines.boundaries}}},
-          {"min_points", min_points}};
+          {"min_points", min_points},
+          {"max_memory_gb", max_memory_gb ? nlohmann::json(*max_memory_gb) : nlohmann::json()}};
 }
 
 Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   validate(options);
+  validate_memory(options, cloud.size(), "the cloud");
   Prepared p;
   p.cloud = std::move(cloud);
   if (p.cloud.size() < std::max<std::size_t>(options.min_points, 3)) {

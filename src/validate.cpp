@@ -1,6 +1,9 @@
 #include "pcsketch/validate.h"
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "pcsketch/neighbourhood/neighbourhoods.h"
@@ -216,11 +219,43 @@ void validate(const DrawOptions& options) {
   validate_features(options.features);
   validate_boundary(options.boundary);
   in_range("--min-points", static_cast<double>(options.min_points), 0, 1e12);
+  if (options.max_memory_gb) positive("--max-memory", *options.max_memory_gb, 1e6);
   validate_view(options.view, options.scene);
   validate_thickness(options.thickness);
   validate_shadow(options.shadow);
   validate_render(options.render);
   validate(options, options.camera);
+}
+
+double point_bytes(const differential::SurfaceOptions& surface, std::size_t points) {
+  return static_cast<double>(points) *
+         (kBytesPerPoint + kBytesPerNeighbour * static_cast<double>(surface.neighbourhood.k));
+}
+
+double physical_memory_bytes() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGESIZE);
+  return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : kHuge;
+}
+
+void validate_memory(double bytes, const std::optional<double>& max_memory_gb, const std::string& what) {
+  const double limit = max_memory_gb ? *max_memory_gb * 1e9 : physical_memory_bytes();
+  if (bytes <= limit) return;
+  const auto gb = [](double b) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g GB", b / 1e9);
+    return std::string(text);
+  };
+  throw OptionError("--max-memory", what + " need about " + gb(bytes) + ", over the " +
+                                        (max_memory_gb ? "limit of " + gb(limit) : gb(limit) + " of this machine") +
+                                        " (thin the cloud with --voxel or --max-points)");
+}
+
+void validate_memory(const DrawOptions& options, std::size_t points, const std::string& source) {
+  const view::CameraOptions& c = options.camera;
+  validate_memory(image_bytes(options, c) + point_bytes(options.surface, points), options.max_memory_gb,
+                  source + ": " + std::to_string(points) + " points (--neighbours " +
+                      std::to_string(options.surface.neighbourhood.k) + ") and a " + std::to_string(c.width) + "x" +
+                      std::to_string(c.height) + " image");
 }
 
 }  // namespace pcsketch

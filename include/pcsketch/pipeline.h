@@ -53,6 +53,9 @@ struct DrawOptions {
   /// Clouds with fewer points than this give an empty drawing and a warning instead of an analysis: a surface
   /// needs a neighbourhood (k) per point. 3 is the least a plane needs; smaller clouds cannot be drawn.
   std::size_t min_points = 3;
+  /// Most memory a drawing may need, GB (1e9 bytes), estimated from the image and the point count before the analysis
+  /// (validate_memory in validate.h); unset: the machine's physical memory.
+  std::optional<double> max_memory_gb;
   ProgressFn progress;  ///< optional: stage name and fraction; false cancels (pcsketch::Cancelled)
 
   /// Every option, for Drawing::parameters.
@@ -102,7 +105,8 @@ struct Prepared {
 /// Analyses `cloud` (neighbourhoods, normals, curvature), extracts ridge and valley lines and builds the ray-casting
 /// scene. A cloud too small or too degenerate to analyse (fewer than `min_points`, fewer than 3 distinct points)
 /// gives a Prepared without analysis and a warning: draw_view then returns an empty drawing.
-/// @throws OptionError (validate.h) for options out of range; pcsketch::Cancelled if the progress callback asks to
+/// @throws OptionError (validate.h) for options out of range or a cloud estimated to need more than max_memory_gb;
+/// pcsketch::Cancelled if the progress callback asks to
 /// stop.
 Prepared prepare(PointCloud cloud, const DrawOptions& options = {});
 

@@ -3,6 +3,7 @@
 // after parsing, before reading the input) call the same function, so a bad value fails at once with the flag named.
 
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include "pcsketch/core/error.h"
@@ -10,6 +11,9 @@
 namespace pcsketch {
 
 struct DrawOptions;
+namespace differential {
+struct SurfaceOptions;
+}
 namespace view {
 struct CameraOptions;
 }
@@ -35,6 +39,29 @@ inline constexpr float kMinHatchSpacingPx = 1.0f;
 
 /// Estimated bytes of the buffers sized by the image of `options` (A8 raster plus attached-shadow grid).
 double image_bytes(const DrawOptions& options, const view::CameraOptions& camera);
+
+/// Memory a point costs the analysis and the drawing beyond the image buffers: kBytesPerPoint plus
+/// kBytesPerNeighbour for each of its `--neighbours` k. Measured as the growth of peak RSS of `pcsketch draw
+/// --size 64x64` (2 threads) on area-uniform samples of fandisk, 50k to 400k points: 338 bytes a point at k = 16 and
+/// 677 at k = 64, i.e. 7 a neighbour (the k-NN lists hold an index and a distance: 8) and about 210 besides
+/// (positions, normals, curvature, Embree's discs, …), rounded up to 256; a noisy 200k sample (denoised, curvature
+/// fits widened to 512 neighbours) took 370 at k = 16, under the estimate's 384. `features` costs about as much.
+inline constexpr double kBytesPerPoint = 256;
+inline constexpr double kBytesPerNeighbour = 8;
+
+/// Estimated bytes of the analysis of `points` points with `surface` (kBytesPerPoint, kBytesPerNeighbour).
+double point_bytes(const differential::SurfaceOptions& surface, std::size_t points);
+
+/// The machine's physical memory in bytes: the memory limit when `--max-memory` is not given.
+double physical_memory_bytes();
+
+/// Refuses work estimated at `bytes` when that exceeds `max_memory_gb` GB (1e9 bytes) or, unset, the physical
+/// memory. @throws OptionError naming --max-memory, the message starting with `what` (the input and its size).
+void validate_memory(double bytes, const std::optional<double>& max_memory_gb, const std::string& what);
+
+/// validate_memory() for a drawing of `points` points from `source` (the input file, or "the cloud"): the image
+/// buffers of options.camera plus point_bytes().
+void validate_memory(const DrawOptions& options, std::size_t points, const std::string& source);
 
 /// Checks every field of `options` (NaN and Inf are refused everywhere; each value within its documented range;
 /// image size and memory within the limits above). @throws OptionError for the first bad value.

@@ -4,9 +4,9 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
-#include <memory>
 
 #include "io/ply_types.h"
+#include "pcsketch/core/atomic_file.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/io/ply.h"
 
@@ -105,12 +105,18 @@ void write_ply(const std::string& path, const PointCloud& cloud, const std::vect
     body.end_entry();
   }
 
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "wb"), std::fclose);
+  // Into a temporary file renamed over `path` when complete: a failure leaves an existing file as it was.
+  TempFile temp(path);
+  std::FILE* file = std::fopen(temp.path().c_str(), "wb");
   if (!file) throw Error(where, "PLY writer: cannot open for writing: " + std::string(std::strerror(errno)));
   const std::vector<char>& bytes = body.bytes();
-  if (std::fwrite(header.data(), 1, header.size(), file.get()) != header.size() ||
-      std::fwrite(bytes.data(), 1, bytes.size(), file.get()) != bytes.size() || std::fflush(file.get()) != 0)
-    throw Error(where, "PLY writer: write failed: " + std::string(std::strerror(errno)));
+  const bool written = std::fwrite(header.data(), 1, header.size(), file) == header.size() &&
+                       std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size() && std::fflush(file) == 0;
+  const int write_error = errno;
+  const bool closed = std::fclose(file) == 0;
+  if (!written || !closed)
+    throw Error(where, "PLY writer: write failed: " + std::string(std::strerror(written ? errno : write_error)));
+  temp.commit();
 }
 
 }  // namespace pcsketch::io

@@ -1,18 +1,17 @@
 #include "pcsketch/render/write.h"
 
 #include <tbb/parallel_for.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <exception>
 
+#include "pcsketch/core/atomic_file.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/render/json.h"
 #include "pcsketch/render/pdf.h"
 #include "pcsketch/render/png.h"
 #include "pcsketch/render/svg.h"
-#include "render/atomic_file.h"
 
 namespace pcsketch::render {
 
@@ -33,7 +32,7 @@ void write_drawing(const Drawing& drawing, const std::filesystem::path& path, co
   const std::string ext = extension(path);
   if (!is_supported_output(path))
     throw Error(path.string() + ": output: unknown format (use .svg, .pdf, .png or .json)");
-  detail::TempFile file(path);
+  TempFile file(path);
   try {
     if (ext == ".svg")
       write_svg(drawing, file.path(), options);
@@ -52,17 +51,9 @@ void write_drawing(const Drawing& drawing, const std::filesystem::path& path, co
 }
 
 void check_output(const std::filesystem::path& path) {
-  namespace fs = std::filesystem;
-  const FileLoc where{path.string(), {}, {}};
-  if (!is_supported_output(path)) throw Error(where, "unknown output format (use .svg, .pdf, .png or .json)");
-  const fs::path target = detail::resolve_target(path);
-  std::error_code ec;
-  const fs::file_status status = fs::status(target, ec);
-  if (fs::exists(status) && !fs::is_regular_file(status))
-    throw Error(where, "exists and is not a regular file; it would not be replaced");
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  if (!fs::is_directory(dir, ec)) throw Error(where, "the directory " + dir.string() + " does not exist");
-  if (::access(dir.c_str(), W_OK) != 0) throw Error(where, "the directory " + dir.string() + " is not writable");
+  if (!is_supported_output(path))
+    throw Error(FileLoc{path.string(), {}, {}}, "unknown output format (use .svg, .pdf, .png or .json)");
+  check_writable(path);
 }
 
 void write_drawings(const Drawing& drawing, const std::vector<std::filesystem::path>& paths,

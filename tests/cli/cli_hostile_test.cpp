@@ -97,6 +97,7 @@ TEST_F(CliHostile, EveryNumericFlagWithNanInfNegativeZeroAndHuge) {
                                           "--hatch-spacing",
                                           "--pen-width",
                                           "--page-width-mm",
+                                          "--max-memory",
                                           "--threads"};
   for (const std::string& flag : flags)
     for (const char* value : {"nan", "inf", "-1", "0", "1e308", "1e309"}) {
@@ -194,6 +195,69 @@ TEST_F(CliHostile, FullDiskLeavesEarlierOutputsByteIdentical) {
   for (const char* f : {"d.svg", "d.png", "d.pdf", "d.json"}) EXPECT_EQ(slurp(path(f)), before[i++]) << f;
   for (const auto& entry : fs::directory_iterator(dir_))
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+TEST_F(CliHostile, FeaturesAndSampleFullDiskLeaveEarlierOutputsByteIdentical) {
+  const std::string outputs = " -o " + path("f.ply") + " --lines " + path("f.json");
+  ASSERT_EQ(limited("-q features " + path("s.xyz") + outputs).status, 0);
+  const std::string ply = slurp(path("f.ply")), json = slurp(path("f.json"));
+  // ulimit -f counts 512-byte blocks in sh: 2 KB, less than the 300 points' PLY (about 11 KB binary).
+  const std::string full_disk = "trap '' XFSZ; ulimit -f 4;";
+  const CommandRun features = limited("-q features " + path("s.xyz") + " --ascii" + outputs, full_disk);
+  EXPECT_EQ(features.status, 2) << features.err;
+  EXPECT_EQ(lines(features.err), 1u) << features.err;
+  EXPECT_NE(features.err.find(path("f.ply") + ": PLY writer: write failed"), std::string::npos) << features.err;
+  const CommandRun sample =
+      limited("-q sample " PCSKETCH_FIXTURES "/fandisk.off -n 2000 -o " + path("f.ply"), full_disk);
+  EXPECT_EQ(sample.status, 2) << sample.err;
+  EXPECT_EQ(slurp(path("f.ply")), ply);
+  EXPECT_EQ(slurp(path("f.json")), json);
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+}
+
+TEST_F(CliHostile, FeaturesAndSampleOutputsAreCheckedBeforeTheWork) {
+  fs::create_symlink("/dev/full", path("full.ply"));
+  fs::create_symlink("/dev/full", path("full.json"));
+  const std::string features = "-q features " + path("s.xyz");
+  for (const std::string& flags : {" -o " + path("full.ply"), " -o " + path("o.ply") + " --lines " + path("full.json"),
+                                   " -o " + path("o.ply") + " --lines " + path("./o.ply"),
+                                   " -o " + path("no/such/o.ply")}) {
+    SCOPED_TRACE(flags);
+    const CommandRun r = limited(features + flags);
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_FALSE(fs::exists(path("o.ply")));
+  }
+  EXPECT_EQ(limited("-q sample " PCSKETCH_FIXTURES "/fandisk.off -n 100 -o " + path("full.ply")).status, 1);
+  EXPECT_TRUE(fs::is_symlink(path("full.ply")));
+  EXPECT_TRUE(fs::is_symlink(path("full.json")));
+  // A link to a regular file: the file is replaced, the link kept.
+  std::ofstream(path("real.ply")) << "old";
+  fs::create_symlink(path("real.ply"), path("link.ply"));
+  ASSERT_EQ(limited(features + " -o " + path("link.ply")).status, 0);
+  EXPECT_TRUE(fs::is_symlink(path("link.ply")));
+  EXPECT_EQ(slurp(path("real.ply")).substr(0, 4), "ply\n");
+}
+
+TEST_F(CliHostile, MemoryIsEstimatedFromTheImageAndThePointsBeforeTheAnalysis) {
+  // 300 points at 256 + 8 x 16 bytes and a 96x96 image (9216 + 48384 bytes): 172800 bytes in all.
+  const CommandRun over = limited(draw("--max-memory 0.0001727"));
+  EXPECT_EQ(over.status, 1) << over.err;
+  EXPECT_EQ(lines(over.err), 1u) << over.err;
+  EXPECT_NE(over.err.find("--max-memory: " + path("s.xyz") +
+                          ": 300 points (--neighbours 16) and a 96x96 image need about 0.000173 GB"),
+            std::string::npos)
+      << over.err;
+  EXPECT_FALSE(fs::exists(path("o.svg")));
+  EXPECT_EQ(limited(draw("--max-memory 0.0001729")).status, 0);
+  // features has no image: 300 x 384 = 115200 bytes.
+  const std::string features = "-q features " + path("s.xyz") + " -o " + path("f.ply") + " --max-memory ";
+  const CommandRun refused = limited(features + "0.0001151");
+  EXPECT_EQ(refused.status, 1) << refused.err;
+  EXPECT_NE(refused.err.find("--max-memory: " + path("s.xyz") + ": 300 points"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(path("f.ply")));
+  EXPECT_EQ(limited(features + "0.0001153").status, 0);
 }
 
 TEST_F(CliHostile, FifoInputIsRefusedWithoutBlocking) {

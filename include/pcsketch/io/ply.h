@@ -28,7 +28,8 @@ struct PlyWriteOptions {
 
 /// Writes the cloud as one "vertex" element: x y z (world coordinates origin + position: `double` when the origin
 /// is non-zero so georeferenced clouds keep their precision, `float` otherwise), then nx ny nz (float) and
-/// red green blue (uchar) when present, then `attributes` in order.
+/// red green blue (uchar) when present, then `attributes` in order. The file is written under a temporary name next
+/// to `path` and renamed over it when complete (core/atomic_file.h): a failure leaves an existing file as it was.
 /// @throws pcsketch::Error if an attribute's size is not #P, a name is empty or has spaces, or the file cannot be
 ///         written.
 void write_ply(const std::string& path, const PointCloud& cloud, const std::vector<PlyAttribute>& attributes = {},

@@ -1,4 +1,4 @@
-#include "render/atomic_file.h"
+#include "pcsketch/core/atomic_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -11,9 +11,14 @@
 
 #include "pcsketch/core/error.h"
 
-namespace pcsketch::render::detail {
+namespace pcsketch {
 
 namespace fs = std::filesystem;
+
+namespace {
+constexpr const char* kNotRegular = "exists and is not a regular file; it would not be replaced";
+fs::path directory_of(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
+}  // namespace
 
 fs::path resolve_target(const fs::path& path) {
   fs::path p = path;
@@ -27,11 +32,26 @@ fs::path resolve_target(const fs::path& path) {
   return p;
 }
 
+void check_writable(const fs::path& path) {
+  const FileLoc where{path.string(), {}, {}};
+  const fs::path target = resolve_target(path);
+  std::error_code ec;
+  const fs::file_status status = fs::status(target, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw Error(where, kNotRegular);
+  const fs::path dir = directory_of(target);
+  if (!fs::is_directory(dir, ec)) throw Error(where, "the directory " + dir.string() + " does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw Error(where, "the directory " + dir.string() + " is not writable");
+}
+
 TempFile::TempFile(const fs::path& target) : target_(target), final_(resolve_target(target)) {
   static std::atomic<unsigned> counter{0};
   struct stat existing {};
   const bool exists = ::stat(final_.c_str(), &existing) == 0;
-  const fs::path dir = final_.has_parent_path() ? final_.parent_path() : fs::path(".");
+  // Renaming over a device or a FIFO (a symlink to /dev/full, as root) would replace it: never.
+  if (exists && !S_ISREG(existing.st_mode))
+    throw Error(FileLoc{target.string(), {}, {}}, kNotRegular);
+  const fs::path dir = directory_of(final_);
   for (int attempt = 0; attempt < 100; ++attempt) {
     temp_ = dir /
             ("." + final_.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
@@ -58,4 +78,4 @@ void TempFile::commit() {
   committed_ = true;
 }
 
-}  // namespace pcsketch::render::detail
+}  // namespace pcsketch
