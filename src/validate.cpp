@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -69,6 +70,23 @@ void validate_surface(const differential::SurfaceOptions& s) {
   fraction("--file-normals (disagreement)", s.file_normal_disagreement);
 }
 
+/// The names (flags or option paths) of the tracing and joining options, in the order validate_lines checks them.
+using LineOptionNames = std::array<const char*, 10>;
+
+/// Tracing and joining of ridge/valley lines and of boundary lines share their options.
+void validate_lines(const features::TraceOptions& t, const features::JoinOptions& j, const LineOptionNames& name) {
+  positive(name[0], t.radius_factor, 1e4);
+  if (t.radius) positive(name[1], *t.radius);
+  in_range(name[2], t.corridor_fraction, 0, 1, true);
+  in_range(name[3], t.max_turn_deg, 0, 90, true);
+  non_negative(name[4], j.join_distance_alpha, 1e4);
+  in_range(name[5], j.join_angle_beta_deg, 0, 90);
+  non_negative(name[6], j.min_length_factor);
+  if (j.min_length) non_negative(name[7], *j.min_length);
+  in_range(name[8], j.smoothing_iterations, 0, 100);
+  fraction(name[9], j.smoothing_weight);
+}
+
 void validate_features(const features::RidgeValleyOptions& f) {
   const features::DetectionOptions& d = f.detection;
   // α = 0 would make every point a ridge/valley point (and fail late); it must be a positive fraction.
@@ -77,16 +95,9 @@ void validate_features(const features::RidgeValleyOptions& f) {
   non_negative("--saliency-floor", d.saliency_floor);
   non_negative("--median-factor", d.median_factor);
   open_range("--suppression-cone", d.suppression_cone_deg, 0, 90);
-  positive("--radius", f.tracing.radius_factor, 1e4);
-  if (f.tracing.radius) positive("--radius-abs", *f.tracing.radius);
-  in_range("--corridor", f.tracing.corridor_fraction, 0, 1, true);
-  in_range("--max-turn", f.tracing.max_turn_deg, 0, 90, true);
-  non_negative("--join-distance", f.joining.join_distance_alpha, 1e4);
-  in_range("--beta", f.joining.join_angle_beta_deg, 0, 90);
-  non_negative("--min-length", f.joining.min_length_factor);
-  if (f.joining.min_length) non_negative("--min-length-abs", *f.joining.min_length);
-  in_range("--smooth", f.joining.smoothing_iterations, 0, 100);
-  fraction("--smooth-weight", f.joining.smoothing_weight);
+  validate_lines(f.tracing, f.joining,
+                 {"--radius", "--radius-abs", "--corridor", "--max-turn", "--join-distance", "--beta", "--min-length",
+                  "--min-length-abs", "--smooth", "--smooth-weight"});
 }
 
 void validate_boundary(const features::BoundaryOptions& b) {
@@ -95,16 +106,12 @@ void validate_boundary(const features::BoundaryOptions& b) {
   in_range("boundary.confirm_factor", b.confirm_factor, 1, 1e3);
   open_range("boundary.confirm_half_angle_deg", b.confirm_half_angle_deg, 0, 90);
   non_negative("--boundary-min-size", b.min_size_factor, 1e6);
-  positive("--boundary-radius", b.tracing.radius_factor, 1e4);
-  if (b.tracing.radius) positive("boundary.tracing.radius", *b.tracing.radius);
-  in_range("boundary.tracing.corridor_fraction", b.tracing.corridor_fraction, 0, 1, true);
-  in_range("boundary.tracing.max_turn_deg", b.tracing.max_turn_deg, 0, 90, true);
-  non_negative("boundary.joining.join_distance_alpha", b.joining.join_distance_alpha, 1e4);
-  in_range("boundary.joining.join_angle_beta_deg", b.joining.join_angle_beta_deg, 0, 90);
-  non_negative("boundary.joining.min_length_factor", b.joining.min_length_factor);
-  if (b.joining.min_length) non_negative("boundary.joining.min_length", *b.joining.min_length);
-  in_range("boundary.joining.smoothing_iterations", b.joining.smoothing_iterations, 0, 100);
-  fraction("boundary.joining.smoothing_weight", b.joining.smoothing_weight);
+  validate_lines(b.tracing, b.joining,
+                 {"--boundary-radius", "boundary.tracing.radius", "boundary.tracing.corridor_fraction",
+                  "boundary.tracing.max_turn_deg", "boundary.joining.join_distance_alpha",
+                  "boundary.joining.join_angle_beta_deg", "boundary.joining.min_length_factor",
+                  "boundary.joining.min_length", "boundary.joining.smoothing_iterations",
+                  "boundary.joining.smoothing_weight"});
 }
 
 void validate_view(const view::ViewOptions& v, const view::SurfaceSceneOptions& scene) {
