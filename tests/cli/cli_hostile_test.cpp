@@ -166,6 +166,17 @@ TEST_F(CliHostile, OutputsAreCheckedBeforeTheWork) {
   EXPECT_FALSE(fs::exists(path("o.svg")));
 }
 
+TEST_F(CliHostile, ANameTooLongIsABadPathNotAnInternalError) {
+  // fuzz_cli found it: a 300-byte file name (ENAMETOOLONG) made the same-file check throw, exit 3.
+  const std::string name(300, 'n');
+  for (const std::string& flags : {"--stages " + path(name), "-o " + path(name + ".png")}) {
+    const CommandRun r = limited(draw(flags));
+    EXPECT_TRUE(r.status == 1 || r.status == 2) << flags.substr(0, 12) << ": " << r.status << " " << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("File name too long"), std::string::npos) << r.err;
+  }
+}
+
 TEST_F(CliHostile, SymlinkOutputReplacesItsTargetAndStays) {
   std::ofstream(path("real.svg")) << "old";
   fs::create_symlink(path("real.svg"), path("link.svg"));
