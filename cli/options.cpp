@@ -221,7 +221,12 @@ void add_memory_option(CLI::App* cmd, std::optional<double>& target) {
 }
 
 std::filesystem::path same_file_key(const std::string& path) {
-  return std::filesystem::weakly_canonical(std::filesystem::absolute(path));
+  // Without throwing: a name the file system refuses (too long) is refused by check_output_path, with a message.
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  if (ec) return std::filesystem::path(path).lexically_normal();
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(absolute, ec);
+  return ec ? absolute.lexically_normal() : canonical;
 }
 
 void check_output_path(const std::string& flag, const std::string& path) {
