@@ -104,6 +104,9 @@ void check_outputs(const DrawArgs& args) {
   }
   if (args.stages.empty()) return;
   std::error_code ec;
+  const fs::file_status status = fs::status(args.stages, ec);
+  if (ec && status.type() != fs::file_type::not_found)
+    throw OptionError("--stages", quote(args.stages) + ": " + ec.message());
   fs::path existing = fs::absolute(args.stages);
   while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
     existing = existing.parent_path();

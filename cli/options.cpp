@@ -221,12 +221,11 @@ void add_memory_option(CLI::App* cmd, std::optional<double>& target) {
 }
 
 std::filesystem::path same_file_key(const std::string& path) {
-  // Non-throwing: a name the file system refuses (over 255 bytes: ENAMETOOLONG, found by fuzz_cli) was exit 3; it
-  // keeps its lexical form here and check_writable says what is wrong with it.
+  // Without throwing: a name the file system refuses (too long) is refused by check_output_path, with a message.
   std::error_code ec;
-  std::filesystem::path absolute = std::filesystem::absolute(path, ec);
-  if (ec) absolute = path;
-  std::filesystem::path canonical = std::filesystem::weakly_canonical(absolute, ec);
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  if (ec) return std::filesystem::path(path).lexically_normal();
+  const std::filesystem::path canonical = std::filesystem::weakly_canonical(absolute, ec);
   return ec ? absolute.lexically_normal() : canonical;
 }
 

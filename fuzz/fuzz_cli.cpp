@@ -71,7 +71,8 @@ Workspace make_workspace() {
     fs::remove_all(pattern, ec);
   });
   const fs::path root = pattern;
-  Workspace w{root / "run", {(root / "sphere.xyz").string(), (root / "cube.ply").string(), (root / "two.xyz").string()}};
+  Workspace w{root / "run",
+              {(root / "sphere.xyz").string(), (root / "cube.ply").string(), (root / "two.xyz").string()}};
   std::ofstream sphere(w.inputs[0]);
   for (int i = 0; i < 60; ++i) {
     const double z = 1 - 2 * (i + 0.5) / 60, r = std::sqrt(1 - z * z), a = i * 2.399963229728653;

@@ -37,6 +37,8 @@ void check_writable(const fs::path& path) {
   const fs::path target = resolve_target(path);
   std::error_code ec;
   const fs::file_status status = fs::status(target, ec);
+  // ENOENT is the one error that lets a file be written (ENAMETOOLONG, ELOOP, EACCES do not).
+  if (ec && status.type() != fs::file_type::not_found) throw Error(where, "cannot be written: " + ec.message());
   if (fs::exists(status) && !fs::is_regular_file(status))
     throw Error(where, kNotRegular);
   const fs::path dir = directory_of(target);

@@ -166,15 +166,20 @@ TEST_F(CliHostile, OutputsAreCheckedBeforeTheWork) {
   EXPECT_FALSE(fs::exists(path("o.svg")));
 }
 
-TEST_F(CliHostile, ANameTooLongIsABadPathNotAnInternalError) {
-  // fuzz_cli found it: a 300-byte file name (ENAMETOOLONG) made the same-file check throw, exit 3.
+TEST_F(CliHostile, OverlongOutputNamesAreUsageErrors) {
+  // Found by fuzz_cli: a --stages name over NAME_MAX made weakly_canonical throw, exit 3 "internal error".
   const std::string name(300, 'n');
-  for (const std::string& flags : {"--stages " + path(name), "-o " + path(name + ".png")}) {
+  for (const std::string& flags :
+       {"--stages " + path(name), "-o " + path(name + ".svg"), "--json " + path(name + ".json")}) {
+    SCOPED_TRACE(flags.substr(0, 8));
     const CommandRun r = limited(draw(flags));
-    EXPECT_TRUE(r.status == 1 || r.status == 2) << flags.substr(0, 12) << ": " << r.status << " " << r.err;
-    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_NE(r.err.find("File name too long"), std::string::npos) << r.err;
   }
+  const CommandRun features = limited("-q features " + path("s.xyz") + " -o " + path(name + ".ply"));
+  EXPECT_EQ(features.status, 1) << features.err;
+  EXPECT_NE(features.err.find("--output: "), std::string::npos) << features.err;
 }
 
 TEST_F(CliHostile, SymlinkOutputReplacesItsTargetAndStays) {
