@@ -157,13 +157,17 @@ std::vector<std::uint8_t> border_points(const std::vector<Vec3f>& positions, con
 std::vector<std::uint8_t> drawn_sets(const std::vector<Vec3f>& positions, const neighbourhood::Neighbourhoods& nbh,
                                      std::vector<std::uint8_t>& rim, float min_size, std::size_t& small) {
   const std::size_t n = positions.size();
+  small = 0;
+  std::vector<std::uint8_t> drawn(n, 0);
+  // A closed cloud usually has no rim point at all: no sets, boxes or counts to build.
+  if (std::none_of(rim.begin(), rim.end(), [](std::uint8_t r) { return r != 0; })) return drawn;
   pcsketch::detail::Clusters sets(n);
   for (std::uint32_t i = 0; i < n; ++i)
     if (rim[i])
       for (const std::uint32_t j : nbh.of(i))
         if (rim[j]) sets.join(i, j);
   std::vector<Eigen::AlignedBox3f> box(n);
-  std::vector<std::uint8_t> bordered(n, 0), drawn(n, 0);
+  std::vector<std::uint8_t> bordered(n, 0);
   for (std::uint32_t i = 0; i < n; ++i)
     if (rim[i]) {
       box[sets.find(i)].extend(positions[i]);
@@ -172,7 +176,6 @@ std::vector<std::uint8_t> drawn_sets(const std::vector<Vec3f>& positions, const 
   const auto kept = [&](std::uint32_t root) { return bordered[root] && box[root].sizes().maxCoeff() >= min_size; };
   std::vector<std::uint32_t> count(n, 0);
   for (std::uint32_t i = 0; i < n; ++i) count[sets.find(i)] += rim[i] != 0;
-  small = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!rim[i]) continue;
     const std::uint32_t root = sets.find(i);
