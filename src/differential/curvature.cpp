@@ -8,6 +8,8 @@
 #include <span>
 
 #include "differential/common.h"
+#include "differential/graph_curvature.h"
+#include "differential/group_fit.h"
 #include "neighbourhood/parallel_chunks.h"
 
 namespace pcsketch::differential {
@@ -25,15 +27,6 @@ struct PointFit {
   Vec3f dir1 = Vec3f::UnitX(), dir2 = Vec3f::UnitY();
   double residual = 0;  ///< RMS distance of the points to the fitted graph along the normal, dof-corrected
 };
-
-/// Right-handed orthonormal tangent frame (u, v) of a unit normal, branch-free (Duff et al. 2017).
-void tangent_frame(const Vec3d& n, Vec3d& u, Vec3d& v) {
-  const double sign = std::copysign(1.0, n.z());
-  const double a = -1.0 / (sign + n.z());
-  const double b = n.x() * n.y() * a;
-  u = Vec3d(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
-  v = Vec3d(b, sign + n.y() * n.y() * a, -n.y());
-}
 
 /// Least-squares quadric height field over local[0..size) (the point and its first size − 1 neighbours in the
 /// tangent frame (u, v, n) of its normal; `spread` is Σ x² + y² over the neighbours); principal curvatures from the
@@ -83,27 +76,12 @@ PointFit fit_quadric(const Vec3d* local, std::size_t size, double spread, const 
 
   // Graph z = h(x, y): derivatives at the origin in model units.
   const double s2 = scale * scale;
-  const double hx = c[3] * scale, hy = c[4] * scale;
-  const double hxx = 2 * c[0] * s2, hxy = c[1] * s2, hyy = 2 * c[2] * s2;
-  const double e = 1 + hx * hx, f = hx * hy, g = 1 + hy * hy;
-  const double w = std::sqrt(1 + hx * hx + hy * hy);
-  const double l = hxx / w, m = hxy / w, nn = hyy / w;
-  // Eigenvalues of I⁻¹·II (curvatures towards +normal) from det(II − κ I) = 0; det I = w².
-  const double h = (l * g - 2 * m * f + nn * e) / (2 * w * w);
-  const double gauss = (l * nn - m * m) / (w * w);
-  const double root = std::sqrt(std::max(0.0, h * h - gauss));
-  const double toward_min = h - root;
-  // Convex (bending away from an outward normal) is positive: negate, so k1 = −min, k2 = −max.
-  fit.k1 = static_cast<float>(-toward_min);
-  fit.k2 = static_cast<float>(-(h + root));
-  // Eigenvector of toward_min: a row of (II − κ I) is orthogonal to it; take the better conditioned one.
-  const Eigen::Vector2d a(m - toward_min * f, -(l - toward_min * e));
-  const Eigen::Vector2d b(nn - toward_min * g, -(m - toward_min * f));
-  const Eigen::Vector2d xi = a.squaredNorm() >= b.squaredNorm() ? a : b;
+  const detail::GraphCurvature g =
+      detail::graph_curvature(c[3] * scale, c[4] * scale, 2 * c[0] * s2, c[1] * s2, 2 * c[2] * s2);
+  fit.k1 = static_cast<float>(g.k1);
+  fit.k2 = static_cast<float>(g.k2);
   // The tangent vector (ξ, η, hx ξ + hy η) projected onto the tangent plane of `normal` is ξ u + η v.
-  const Vec3d dir = xi.squaredNorm() > 1e-24 * (l * l + m * m + nn * nn) && xi.squaredNorm() > 0
-                        ? Vec3d(xi.x() * u + xi.y() * v).normalized()
-                        : u;  // umbilic: every direction is principal
+  const Vec3d dir = g.xi.squaredNorm() > 0 ? Vec3d(g.xi.x() * u + g.xi.y() * v).normalized() : u;
   fit.dir1 = dir.cast<float>();
   fit.dir2 = n.cross(dir).cast<float>();
   return fit;
@@ -117,7 +95,7 @@ PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f&
   const Vec3d n = normal.cast<double>();
   if (!(n.squaredNorm() > 0.5)) return {};  // no normal: no frame
   Vec3d u, v;
-  tangent_frame(n, u, v);
+  detail::tangent_frame(n, u, v);
   const Vec3d origin = points[i].cast<double>();
 
   thread_local std::vector<Vec3d> local;
@@ -181,69 +159,6 @@ double noise_estimate(const std::vector<double>& residual, std::vector<double>& 
   return std::sqrt(noise_share) * outer_median;
 }
 
-/// The k nearest neighbours of the points of one group of consecutive indices (space-filling-curve order keeps them
-/// a few h apart), from one radius query around the group instead of one k-NN query per point: a k-NN query of 512
-/// keeps its result sorted as it goes and cost ~75 µs a point, most of a noisy cloud's time. The query's radius holds
-/// each point's estimated k-th distance with a margin; a point whose k-th neighbour lies beyond what the ball surely
-/// holds for it gets its own k-NN query, so the sets are exactly the k nearest.
-class GroupNeighbours {
- public:
-  static constexpr std::size_t kGroup = 16;
-
-  GroupNeighbours(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& shared,
-                  const neighbourhood::KdTree& tree, std::size_t k)
-      : points_(points), shared_(shared), tree_(tree), k_(k),
-        widen_(1.25f * std::sqrt(static_cast<float>(k) / static_cast<float>(std::max<std::size_t>(shared.k, 1)))) {}
-
-  /// Gathers the ball around points [begin, end).
-  void gather(std::size_t begin, std::size_t end) {
-    centre_ = Vec3f::Zero();
-    for (std::size_t i = begin; i < end; ++i) centre_ += points_[i];
-    centre_ /= static_cast<float>(end - begin);
-    float radius = 0;
-    for (std::size_t i = begin; i < end; ++i) radius = std::max(radius, (points_[i] - centre_).norm() + estimate(i));
-    radius_ = radius;
-    tree_.radius_unsorted(centre_, radius_, ball_);
-  }
-
-  /// The k nearest neighbours of point i of the gathered group (i excluded), in no particular order.
-  const std::vector<std::uint32_t>& of(std::size_t i) {
-    const Vec3f& p = points_[i];
-    candidates_.clear();
-    for (const std::uint32_t j : ball_)
-      if (j != i) candidates_.emplace_back((points_[j] - p).squaredNorm(), j);
-    const float sure = radius_ - (p - centre_).norm();  // the ball holds every point this close to i
-    if (candidates_.size() >= k_) {
-      std::nth_element(candidates_.begin(), candidates_.begin() + static_cast<std::ptrdiff_t>(k_ - 1),
-                       candidates_.end());
-      if (std::sqrt(candidates_[k_ - 1].first) <= sure) {
-        found_.resize(k_);
-        for (std::size_t m = 0; m < k_; ++m) found_[m] = candidates_[m].second;
-        return found_;
-      }
-    }
-    tree_.knn_of_point(i, k_, found_, distances_);
-    return found_;
-  }
-
- private:
-  /// Estimated distance of the k-th neighbour: the shared k-th distance scaled by √(k / shared k), with a margin.
-  float estimate(std::size_t i) const {
-    return shared_.k > 0 ? widen_ * shared_.distances[i * shared_.k + shared_.k - 1] : 0.f;
-  }
-
-  const std::vector<Vec3f>& points_;
-  const neighbourhood::Neighbourhoods& shared_;
-  const neighbourhood::KdTree& tree_;
-  std::size_t k_;
-  float widen_;
-  Vec3f centre_ = Vec3f::Zero();
-  float radius_ = 0;
-  std::vector<std::uint32_t> ball_, found_;
-  std::vector<float> distances_;
-  std::vector<std::pair<float, std::uint32_t>> candidates_;
-};
-
 Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                    const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree* given_tree,
                    const CurvatureOptions& options) {
@@ -281,22 +196,16 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
       }
     });
   };
-  // Fits over k neighbours from the tree (wider than the shared lists), gathered a group of points at a time.
+  // Fits over k neighbours from the tree (wider than the shared lists), one per group of nearby points.
   const auto run_wide = [&](std::size_t k) {
     result.fit_neighbours = k;
     const neighbourhood::KdTree& tree = given_tree ? *given_tree : own_tree.emplace(points);
-    const std::size_t groups = (n + GroupNeighbours::kGroup - 1) / GroupNeighbours::kGroup;
-    pcsketch::detail::parallel_chunks(groups, options.progress, "curvature", [&](std::size_t begin, std::size_t end) {
-      GroupNeighbours near(points, neighbourhoods, tree, k);
-      for (std::size_t g = begin; g < end; ++g) {
-        const std::size_t first = g * GroupNeighbours::kGroup, last = std::min(n, first + GroupNeighbours::kGroup);
-        near.gather(first, last);
-        for (std::size_t i = first; i < last; ++i) {
-          const std::vector<std::uint32_t>& nb = near.of(i);
-          store(i, fit_point(points, i, normals[i], nb.data(), nb.size(), nullptr));
-        }
-      }
-    });
+    const detail::PointFitFn point_fit = [&](std::size_t i, const std::uint32_t* nb, std::size_t count) {
+      store(i, fit_point(points, i, normals[i], nb, count, nullptr));
+    };
+    result.point_fits = detail::fit_groups(
+        points, normals, neighbourhoods, tree,
+        {.fit = k, .noise_sigma = result.noise_sigma, .progress = options.progress}, point_fit, result);
   };
 
   const std::size_t shared = neighbourhoods.k;

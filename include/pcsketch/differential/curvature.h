@@ -34,6 +34,7 @@ struct Curvature {
   std::vector<Vec3f> dir1;  ///< #P, unit principal direction of k1, tangent to the surface
   std::vector<Vec3f> dir2;  ///< #P, unit principal direction of k2 (= normal × dir1)
   std::size_t fit_neighbours = 0;  ///< neighbours used per fit (after noise adaptation)
+  std::size_t point_fits = 0;      ///< wide fits only: points fitted on their own support (creases); the rest share their group's
   float noise_sigma = 0;           ///< noise σ̂, model units: noise share of the median first-fit residual
   Warnings warnings;
 

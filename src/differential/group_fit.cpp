@@ -1,0 +1,215 @@
+#include "differential/group_fit.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <span>
+#include <tbb/parallel_sort.h>
+
+#include "differential/graph_curvature.h"
+#include "neighbourhood/parallel_chunks.h"
+
+namespace pcsketch::differential::detail {
+
+namespace {
+
+/// Largest group: beyond it the groups' cost is all in the ball query, which it no longer divides.
+constexpr std::size_t kMaxGroup = 64;
+
+using Vec10 = Eigen::Matrix<double, 10, 1>;
+using Mat10 = Eigen::Matrix<double, 10, 10>;
+
+/// Monomials of the cubic, in the order of its coefficients: 1, x, y, x², xy, y², x³, x²y, xy², y³. The first six
+/// are the quadric's.
+Vec10 cubic_basis(double x, double y) {
+  Vec10 b;
+  b << 1, x, y, x * x, x * y, y * y, x * x * x, x * x * y, x * y * y, y * y * y;
+  return b;
+}
+
+/// Estimated radius holding `fit` neighbours of point i: its shared k-th distance scaled by √(fit / k).
+double fit_radius(const neighbourhood::Neighbourhoods& shared, std::size_t i, std::size_t fit) {
+  if (shared.k == 0) return 0;
+  return shared.distances[i * shared.k + shared.k - 1] *
+         std::sqrt(static_cast<double>(fit) / static_cast<double>(shared.k));
+}
+
+/// One group's fit, with per-thread buffers.
+struct GroupFitter {
+  const std::vector<Vec3f>& points;
+  const std::vector<Vec3f>& normals;
+  const neighbourhood::Neighbourhoods& shared;
+  const neighbourhood::KdTree& tree;
+  const GroupFitOptions& options;
+  const PointFitFn& point_fit;
+  Curvature& result;
+  std::vector<std::uint32_t> ball, support;
+  std::vector<Vec3d> local;
+
+  /// One group: one cubic, or a fit per point where the group's quadric leaves more than the noise.
+  /// Supports are balls of the radius estimated to hold `fit` points (radius queries: a k-NN query of 512 sorts as
+  /// it goes, and picking the k nearest from a ball was most of the cost). Returns whether it fell back.
+  bool run(std::span<const std::uint32_t> group) {
+    Vec3d centre = Vec3d::Zero(), normal = Vec3d::Zero();
+    double radius = 0;
+    for (const std::uint32_t i : group) {
+      centre += points[i].cast<double>();
+      normal += normals[i].cast<double>();
+      radius += fit_radius(shared, i, options.fit);
+    }
+    centre /= static_cast<double>(group.size());
+    radius /= static_cast<double>(group.size());
+    tree.radius_unsorted(centre.cast<float>(), static_cast<float>(radius), ball);
+    // Oriented normals agree within a group; if they cancel (a sheet seen from both sides), the first one decides.
+    normal = normal.norm() > 1e-6 ? Vec3d(normal.normalized()) : normals[group.front()].cast<double>();
+    Vec3d u, v;
+    tangent_frame(normal, u, v);
+
+    local.clear();
+    double spread = 0;
+    for (const std::uint32_t j : ball) {
+      const Vec3d d = points[j].cast<double>() - centre;
+      local.emplace_back(d.dot(u), d.dot(v), d.dot(normal));
+      spread += local.back().head<2>().squaredNorm();
+    }
+    // Tangent coordinates scaled to unit RMS radius: keeps the normal equations well conditioned at any scale.
+    const double scale = spread > 0 ? std::sqrt(static_cast<double>(local.size()) / spread) : 1.0;
+    Mat10 normal_matrix = Mat10::Zero();
+    Vec10 rhs = Vec10::Zero();
+    double zz = 0;
+    for (const Vec3d& q : local) {
+      const Vec10 b = cubic_basis(q.x() * scale, q.y() * scale);
+      for (int r = 0; r < 10; ++r)
+        for (int c = 0; c <= r; ++c) normal_matrix(r, c) += b[r] * b[c];
+      rhs += q.z() * b;
+      zz += q.z() * q.z();
+    }
+    // The same tiny ridge as the per-point fits: positive definite always, unseen terms zero.
+    normal_matrix.diagonal().array() += 1e-9 * static_cast<double>(local.size());
+    const std::optional<Vec10> c = solve(normal_matrix, rhs, zz, local.size());
+    if (!c) {
+      double offset = 0;  // the ball must hold every point's own support
+      for (const std::uint32_t i : group) offset = std::max(offset, (points[i].cast<double>() - centre).norm());
+      tree.radius_unsorted(centre.cast<float>(), static_cast<float>(radius + offset), ball);
+      for (const std::uint32_t i : group) fit_alone(i, radius);
+      return true;
+    }
+    for (const std::uint32_t i : group) store(i, *c, centre, normal, u, v, scale);
+    return false;
+  }
+
+  /// Point i fitted over the ball's points within `radius` of it.
+  void fit_alone(std::size_t i, double radius) {
+    support.clear();
+    const auto r2 = static_cast<float>(radius * radius);
+    for (const std::uint32_t j : ball)
+      if (j != i && (points[j] - points[i]).squaredNorm() <= r2) support.push_back(j);
+    point_fit(i, support.data(), support.size());
+  }
+
+  /// The group's height field: the quadric, plus the cubic terms shrunk towards 0 by how far they stand out of the
+  /// noise (weight 1 − cubic_shrink·σ̂²/ΔRSS, at least 0; ΔRSS is the residual the 4 cubic terms remove, σ̂²χ²₄ on
+  /// pure noise). Away from the group's centre the
+  /// cubic terms add their own noise: on a noisy sphere they only add it, on a shape whose curvature changes across
+  /// the group they follow the change. None where even the cubic leaves over `misfit_factor` × σ̂² per degree of
+  /// freedom: a crease, or a shape changing faster than a cubic follows, lies in the support. There the cubic
+  /// bends towards the face beyond the crease, and the point's own support, centred on it, is what places the crest.
+  std::optional<Vec10> solve(const Mat10& normal_matrix, const Vec10& rhs, double zz, std::size_t count) const {
+    if (count <= 10) return std::nullopt;
+    const Eigen::Matrix<double, 6, 1> quadric_rhs = rhs.head<6>();
+    const Eigen::Matrix<double, 6, 6> quadric_matrix = normal_matrix.topLeftCorner<6, 6>();
+    const Eigen::Matrix<double, 6, 1> quadric = quadric_matrix.selfadjointView<Eigen::Lower>().llt().solve(quadric_rhs);
+    const Vec10 cubic = normal_matrix.selfadjointView<Eigen::Lower>().llt().solve(rhs);
+    if (!quadric.allFinite() || !cubic.allFinite()) return std::nullopt;
+    const double cubic_residual = std::max(0.0, zz - cubic.dot(rhs));
+    const double variance = options.noise_sigma * options.noise_sigma;
+    if (!(cubic_residual <= options.misfit_factor * variance * static_cast<double>(count - 10))) return std::nullopt;
+    const double gain = cubic.dot(rhs) - quadric.dot(quadric_rhs);  // ΔRSS of the cubic terms
+    const double weight = gain > 0 ? std::max(0.0, 1 - options.cubic_shrink * variance / gain) : 0.0;
+    Vec10 c = weight * cubic;
+    c.head<6>() += (1 - weight) * quadric;
+    return c;
+  }
+
+  /// Curvature of the fitted cubic at point i's (x, y).
+  void store(std::size_t i, const Vec10& c, const Vec3d& centre, const Vec3d& normal, const Vec3d& u, const Vec3d& v,
+             double scale) {
+    const Vec3d d = points[i].cast<double>() - centre;
+    const double x = d.dot(u) * scale, y = d.dot(v) * scale, s2 = scale * scale;
+    const double hx = (c[1] + 2 * c[3] * x + c[4] * y + 3 * c[6] * x * x + 2 * c[7] * x * y + c[8] * y * y) * scale;
+    const double hy = (c[2] + c[4] * x + 2 * c[5] * y + c[7] * x * x + 2 * c[8] * x * y + 3 * c[9] * y * y) * scale;
+    const double hxx = (2 * c[3] + 6 * c[6] * x + 2 * c[7] * y) * s2;
+    const double hxy = (c[4] + 2 * c[7] * x + 2 * c[8] * y) * s2;
+    const double hyy = (2 * c[5] + 2 * c[8] * x + 6 * c[9] * y) * s2;
+    const GraphCurvature g = graph_curvature(hx, hy, hxx, hxy, hyy);
+    const Vec3d n = normals[i].cast<double>();
+    // k1's direction on the graph, then in the tangent plane of the point's own normal.
+    Vec3d t = g.xi.x() * (u + hx * normal) + g.xi.y() * (v + hy * normal);
+    t -= t.dot(n) * n;
+    if (!(t.squaredNorm() > 1e-24)) {  // umbilic, or a normal across the frame: any tangent direction
+      Vec3d b;
+      tangent_frame(n, t, b);
+    }
+    const Vec3d dir = t.normalized();
+    result.k1[i] = static_cast<float>(g.k1);
+    result.k2[i] = static_cast<float>(g.k2);
+    result.dir1[i] = dir.cast<float>();
+    result.dir2[i] = n.cross(dir).cast<float>();
+  }
+};
+
+}  // namespace
+
+Groups make_groups(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& shared, std::size_t fit,
+                   double fraction, std::size_t max_size) {
+  Groups groups;
+  const std::size_t n = points.size();
+  groups.starts.push_back(0);
+  if (n == 0) return groups;
+  std::vector<double> radii(n);
+  for (std::size_t i = 0; i < n; ++i) radii[i] = fit_radius(shared, i, fit);
+  const auto mid = radii.begin() + static_cast<std::ptrdiff_t>(n / 2);
+  std::nth_element(radii.begin(), mid, radii.end());
+  const double side = 2 * fraction * *mid;
+  Vec3f low = points[0], high = points[0];
+  for (const Vec3f& p : points) low = low.cwiseMin(p), high = high.cwiseMax(p);
+  // Cell keys of 21 bits an axis (cells grow if the cloud spans more); one sort by (key, index) lists each cell's
+  // points together, in index order: deterministic.
+  const double cell = std::max(side, static_cast<double>((high - low).maxCoeff()) / double(1 << 20));
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Eigen::Array3d c = ((points[i] - low).cast<double>() / cell).array().floor();
+      const auto x = static_cast<std::uint64_t>(c.x()), y = static_cast<std::uint64_t>(c.y()),
+                 z = static_cast<std::uint64_t>(c.z());
+      keyed[i] = {(x << 42) | (y << 21) | z, static_cast<std::uint32_t>(i)};
+    }
+  });
+  tbb::parallel_sort(keyed.begin(), keyed.end());
+  groups.members.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    groups.members[i] = keyed[i].second;
+    const bool new_cell = i > 0 && keyed[i].first != keyed[i - 1].first;
+    if (i > 0 && (new_cell || i - groups.starts.back() == max_size)) groups.starts.push_back(i);
+  }
+  groups.starts.push_back(n);
+  return groups;
+}
+
+std::size_t fit_groups(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
+                       const neighbourhood::Neighbourhoods& shared, const neighbourhood::KdTree& tree,
+                       const GroupFitOptions& options, const PointFitFn& point_fit, Curvature& result) {
+  const Groups groups = make_groups(points, shared, options.fit, options.reach, kMaxGroup);
+  const std::size_t count = groups.size();
+  std::vector<char> fell_back(count, 0);
+  pcsketch::detail::parallel_chunks(count, options.progress, "curvature", [&](std::size_t begin, std::size_t end) {
+    GroupFitter fitter{points, normals, shared, tree, options, point_fit, result, {}, {}, {}};
+    for (std::size_t g = begin; g < end; ++g) fell_back[g] = fitter.run(groups.of(g));
+  });
+  std::size_t per_point = 0;
+  for (std::size_t g = 0; g < count; ++g) per_point += fell_back[g] ? groups.of(g).size() : 0;
+  return per_point;
+}
+
+}  // namespace pcsketch::differential::detail
