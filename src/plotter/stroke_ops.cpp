@@ -1,0 +1,180 @@
+#include "plotter/stroke_ops.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace pcsketch::plotter::detail {
+
+double image_length(const Stroke& s) {
+  const std::vector<Vec2f>& q = s.image_points;
+  double length = 0;
+  for (std::size_t i = 1; i < q.size(); ++i) length += (q[i] - q[i - 1]).cast<double>().norm();
+  if (s.closed && q.size() > 2) length += (q.front() - q.back()).cast<double>().norm();
+  return length;
+}
+
+Vec2d first_point(const Stroke& s) { return s.image_points.front().cast<double>(); }
+
+Vec2d last_point(const Stroke& s) { return (s.closed ? s.image_points.front() : s.image_points.back()).cast<double>(); }
+
+void reverse(Stroke& s) {
+  std::reverse(s.points.begin(), s.points.end());
+  std::reverse(s.image_points.begin(), s.image_points.end());
+  std::reverse(s.widths.begin(), s.widths.end());
+  // Segment i's halves (2i, 2i + 1) become the reversed segment's (2i + 1, 2i): reversing the array does both.
+  std::reverse(s.half_widths.begin(), s.half_widths.end());
+}
+
+namespace {
+
+/// Per-vertex array `a` of a stroke with `na` vertices, concatenated with `b` of `nb`; cleared unless both are.
+template <class T>
+void concatenate(std::vector<T>& a, std::size_t na, const std::vector<T>& b, std::size_t nb, std::size_t skip) {
+  if (a.size() != na || b.size() != nb) {
+    a.clear();
+    return;
+  }
+  a.insert(a.end(), b.begin() + static_cast<std::ptrdiff_t>(skip), b.end());
+}
+
+}  // namespace
+
+void append(Stroke& into, const Stroke& next) {
+  const std::size_t na = into.image_points.size(), nb = next.image_points.size();
+  // A shared vertex is dropped, so no zero-length segment (a dot under a round cap) is drawn.
+  const std::size_t skip = into.image_points.back() == next.image_points.front() ? 1 : 0;
+  const bool halves = na >= 2 && nb >= 2 && into.half_widths.size() == 2 * (na - 1) &&
+                      next.half_widths.size() == 2 * (nb - 1);
+  if (halves) {
+    if (skip == 0) {
+      into.half_widths.push_back(into.half_widths.back());  // the connecting segment
+      into.half_widths.push_back(next.half_widths.front());
+    }
+    into.half_widths.insert(into.half_widths.end(), next.half_widths.begin(), next.half_widths.end());
+  } else {
+    into.half_widths.clear();
+  }
+  concatenate(into.points, na, next.points, nb, skip);
+  concatenate(into.widths, na, next.widths, nb, skip);
+  into.image_points.insert(into.image_points.end(), next.image_points.begin() + static_cast<std::ptrdiff_t>(skip),
+                           next.image_points.end());
+}
+
+namespace {
+
+/// A straight hatch stroke as a piece of the line {x : normal·x = offset}, from t0 to t1 along its direction.
+struct Piece {
+  double angle = 0;   ///< direction, radians in [0, π)
+  double offset = 0;  ///< signed distance of the line from the image origin, pixels
+  double t0 = 0, t1 = 0;
+  std::size_t stroke = 0;
+};
+
+bool straight_piece(const Stroke& s, double tolerance, std::size_t index, Piece& piece) {
+  if (s.kind != LineKind::Hatch || s.closed || s.image_points.size() < 2) return false;
+  const Vec2d a = first_point(s), b = s.image_points.back().cast<double>();
+  const double length = (b - a).norm();
+  if (!(length > tolerance)) return false;
+  Vec2d dir = (b - a) / length;
+  if (dir.y() < 0 || (dir.y() == 0 && dir.x() < 0)) dir = -dir;  // one direction per line: angle in [0, π)
+  const Vec2d normal(-dir.y(), dir.x());
+  for (const Vec2f& p : s.image_points)
+    if (std::abs(normal.dot(p.cast<double>() - a)) > tolerance) return false;
+  piece = {std::atan2(dir.y(), dir.x()), normal.dot(a), std::min(dir.dot(a), dir.dot(b)),
+           std::max(dir.dot(a), dir.dot(b)), index};
+  return true;
+}
+
+/// Runs [begin, end) of `items` (sorted by key) in which consecutive keys differ by at most `gap`.
+template <class T, class Key, class Visit>
+void for_each_cluster(std::vector<T>& items, Key key, double gap, Visit visit) {
+  std::size_t begin = 0;
+  for (std::size_t i = 1; i <= items.size(); ++i)
+    if (i == items.size() || key(items[i]) - key(items[i - 1]) > gap) {
+      visit(begin, i);
+      begin = i;
+    }
+}
+
+/// One stroke along the line of `lo` from lo.t0 to hi.t1: the stroke whose end reaches t0 gives its start, the one
+/// reaching t1 its end (3D points included), the first gives kind, grey and width.
+Stroke span_stroke(const std::vector<Stroke>& strokes, const Piece& lo, const Piece& hi) {
+  const Vec2d dir(std::cos(lo.angle), std::sin(lo.angle));
+  auto end_at = [&](const Piece& p, double t, Vec2f& image, Vec3f& point, bool& has_point) {
+    const Stroke& s = strokes[p.stroke];
+    const bool at_front = std::abs(dir.dot(first_point(s)) - t) <= std::abs(dir.dot(s.image_points.back().cast<double>()) - t);
+    image = at_front ? s.image_points.front() : s.image_points.back();
+    has_point = has_point && s.points.size() == s.image_points.size();
+    if (has_point) point = at_front ? s.points.front() : s.points.back();
+  };
+  Stroke out = strokes[lo.stroke];
+  Vec2f a, b;
+  Vec3f pa = Vec3f::Zero(), pb = Vec3f::Zero();
+  bool has_points = true;
+  end_at(lo, lo.t0, a, pa, has_points);
+  end_at(hi, hi.t1, b, pb, has_points);
+  out.image_points = {a, b};
+  out.points = has_points ? std::vector<Vec3f>{pa, pb} : std::vector<Vec3f>{};
+  const float width = out.widths.empty() ? 0.f : out.widths.front();
+  out.widths = out.widths.empty() ? std::vector<float>{} : std::vector<float>{width, width};
+  out.half_widths = out.widths.empty() ? std::vector<float>{} : std::vector<float>{width, width};
+  return out;
+}
+
+}  // namespace
+
+std::vector<Stroke> merge_collinear(std::vector<Stroke> strokes, double tolerance, double& removed_px) {
+  std::vector<Piece> pieces;
+  std::vector<Stroke> out;
+  for (std::size_t i = 0; i < strokes.size(); ++i) {
+    Piece piece;
+    if (straight_piece(strokes[i], tolerance, i, piece))
+      pieces.push_back(piece);
+    else
+      out.push_back(std::move(strokes[i]));
+  }
+  // Directions within tolerance over the image's size are one direction; lines of the wrap-around (angle near 0 and
+  // near π) are not joined, which leaves near-horizontal duplicates drawn twice.
+  double extent = 1;
+  for (const Piece& p : pieces) extent = std::max({extent, std::abs(p.t0), std::abs(p.t1), std::abs(p.offset)});
+  std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) {
+    return std::tie(a.angle, a.offset, a.t0, a.stroke) < std::tie(b.angle, b.offset, b.t0, b.stroke);
+  });
+  for_each_cluster(pieces, [](const Piece& p) { return p.angle; }, tolerance / extent, [&](std::size_t b, std::size_t e) {
+    std::vector<Piece> same_angle(pieces.begin() + static_cast<std::ptrdiff_t>(b), pieces.begin() + static_cast<std::ptrdiff_t>(e));
+    std::sort(same_angle.begin(), same_angle.end(), [](const Piece& x, const Piece& y) {
+      return std::tie(x.offset, x.t0, x.stroke) < std::tie(y.offset, y.t0, y.stroke);
+    });
+    for_each_cluster(same_angle, [](const Piece& p) { return p.offset; }, tolerance, [&](std::size_t lb, std::size_t le) {
+      std::vector<Piece> line(same_angle.begin() + static_cast<std::ptrdiff_t>(lb), same_angle.begin() + static_cast<std::ptrdiff_t>(le));
+      std::sort(line.begin(), line.end(), [](const Piece& x, const Piece& y) { return std::tie(x.t0, x.stroke) < std::tie(y.t0, y.stroke); });
+      std::size_t first = 0;
+      Piece hi = line[0];
+      double drawn = line[0].t1 - line[0].t0;
+      auto flush = [&](std::size_t last) {
+        if (last == first + 1) {
+          out.push_back(std::move(strokes[line[first].stroke]));
+        } else {
+          out.push_back(span_stroke(strokes, line[first], hi));
+          removed_px += std::max(0.0, drawn - (hi.t1 - line[first].t0));
+        }
+      };
+      for (std::size_t i = 1; i < line.size(); ++i) {
+        if (line[i].t0 > hi.t1 + tolerance) {
+          flush(i);
+          first = i;
+          hi = line[i];
+          drawn = 0;
+        } else if (line[i].t1 > hi.t1) {
+          hi = line[i];
+        }
+        drawn += line[i].t1 - line[i].t0;
+      }
+      flush(line.size());
+    });
+  });
+  return out;
+}
+
+}  // namespace pcsketch::plotter::detail
