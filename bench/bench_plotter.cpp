@@ -59,4 +59,6 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace pcsketch::bench
 
-int main(int argc, char** argv) { return pcsketch::bench::bench_main("bench_plotter", argc, argv, pcsketch::bench::run); }
+int main(int argc, char** argv) {
+  return pcsketch::bench::bench_main("bench_plotter", argc, argv, pcsketch::bench::run);
+}

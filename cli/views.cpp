@@ -83,9 +83,12 @@ void add_camera_options(CLI::App* cmd, view::CameraOptions& c, ViewRequest& requ
          "Perspective projection (default orthographic)")
       ->group(group);
   add_vec3(cmd, "--eye", "Perspective eye point X,Y,Z (world)", [&c](const Vec3d& v) { c.eye = v; })->group(group);
-  add_vec3(cmd, "--target", "Perspective target point X,Y,Z (world)", [&c](const Vec3d& v) { c.target = v; })
+  add_vec3(cmd, "--target", "Perspective target point X,Y,Z (world)", [&c](const Vec3d& v) {
+    c.target = v;
+  })->group(group);
+  cmd->add_option("--fov", c.fov_deg, "Perspective vertical field of view, degrees")
+      ->capture_default_str()
       ->group(group);
-  cmd->add_option("--fov", c.fov_deg, "Perspective vertical field of view, degrees")->capture_default_str()->group(group);
   cmd->add_option_function<std::string>(
          "--size",
          [&c](const std::string& s) {

@@ -28,11 +28,16 @@ std::size_t layer_of(const Stroke& s, bool hidden_drawn) {
     if (!p.allFinite()) return kNotPlotted;
   if (!s.visible) return hidden_drawn && s.kind != LineKind::Hatch ? 0 : kNotPlotted;
   switch (s.kind) {
-    case LineKind::Hatch: return 1;
-    case LineKind::Valley: return 2;
-    case LineKind::Ridge: return 3;
-    case LineKind::Boundary: return 4;
-    case LineKind::Contour: return 5;
+    case LineKind::Hatch:
+      return 1;
+    case LineKind::Valley:
+      return 2;
+    case LineKind::Ridge:
+      return 3;
+    case LineKind::Boundary:
+      return 4;
+    case LineKind::Contour:
+      return 5;
   }
   return kNotPlotted;
 }
@@ -51,7 +56,8 @@ Layers plotted_layers(const Drawing& d, bool hidden_drawn) {
 /// Pen-up travel through the strokes in their order, pixels.
 double travel_px(const std::vector<Stroke>& strokes) {
   double travel = 0;
-  for (std::size_t i = 1; i < strokes.size(); ++i) travel += (first_point(strokes[i]) - last_point(strokes[i - 1])).norm();
+  for (std::size_t i = 1; i < strokes.size(); ++i)
+    travel += (first_point(strokes[i]) - last_point(strokes[i - 1])).norm();
   return travel;
 }
 

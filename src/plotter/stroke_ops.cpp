@@ -44,8 +44,8 @@ void append(Stroke& into, const Stroke& next) {
   const std::size_t na = into.image_points.size(), nb = next.image_points.size();
   // A shared vertex is dropped, so no zero-length segment (a dot under a round cap) is drawn.
   const std::size_t skip = into.image_points.back() == next.image_points.front() ? 1 : 0;
-  const bool halves = na >= 2 && nb >= 2 && into.half_widths.size() == 2 * (na - 1) &&
-                      next.half_widths.size() == 2 * (nb - 1);
+  const bool halves =
+      na >= 2 && nb >= 2 && into.half_widths.size() == 2 * (na - 1) && next.half_widths.size() == 2 * (nb - 1);
   if (halves) {
     if (skip == 0) {
       into.half_widths.push_back(into.half_widths.back());  // the connecting segment
@@ -87,14 +87,21 @@ bool straight_piece(const Stroke& s, double tolerance, std::size_t index, Piece&
 }
 
 /// Runs [begin, end) of `items` (sorted by key) in which consecutive keys differ by at most `gap`.
-template <class T, class Key, class Visit>
-void for_each_cluster(std::vector<T>& items, Key key, double gap, Visit visit) {
+template <class Key>
+std::vector<std::pair<std::size_t, std::size_t>> clusters(const std::vector<Piece>& items, Key key, double gap) {
+  std::vector<std::pair<std::size_t, std::size_t>> runs;
   std::size_t begin = 0;
   for (std::size_t i = 1; i <= items.size(); ++i)
     if (i == items.size() || key(items[i]) - key(items[i - 1]) > gap) {
-      visit(begin, i);
+      runs.emplace_back(begin, i);
       begin = i;
     }
+  return runs;
+}
+
+std::vector<Piece> slice(const std::vector<Piece>& items, std::pair<std::size_t, std::size_t> run) {
+  return {items.begin() + static_cast<std::ptrdiff_t>(run.first),
+          items.begin() + static_cast<std::ptrdiff_t>(run.second)};
 }
 
 /// One stroke along the line of `lo` from lo.t0 to hi.t1: the stroke whose end reaches t0 gives its start, the one
@@ -103,7 +110,8 @@ Stroke span_stroke(const std::vector<Stroke>& strokes, const Piece& lo, const Pi
   const Vec2d dir(std::cos(lo.angle), std::sin(lo.angle));
   auto end_at = [&](const Piece& p, double t, Vec2f& image, Vec3f& point, bool& has_point) {
     const Stroke& s = strokes[p.stroke];
-    const bool at_front = std::abs(dir.dot(first_point(s)) - t) <= std::abs(dir.dot(s.image_points.back().cast<double>()) - t);
+    const bool at_front =
+        std::abs(dir.dot(first_point(s)) - t) <= std::abs(dir.dot(s.image_points.back().cast<double>()) - t);
     image = at_front ? s.image_points.front() : s.image_points.back();
     has_point = has_point && s.points.size() == s.image_points.size();
     if (has_point) point = at_front ? s.points.front() : s.points.back();
@@ -122,6 +130,33 @@ Stroke span_stroke(const std::vector<Stroke>& strokes, const Piece& lo, const Pi
   return out;
 }
 
+/// The pieces of one line: one stroke per stretch where they overlap (or nearly meet); a piece alone stays as it was.
+void union_on_line(std::vector<Piece> line, std::vector<Stroke>& strokes, double tolerance, std::vector<Stroke>& out,
+                   double& removed_px) {
+  std::sort(line.begin(), line.end(),
+            [](const Piece& x, const Piece& y) { return std::tie(x.t0, x.stroke) < std::tie(y.t0, y.stroke); });
+  std::size_t first = 0;
+  Piece reach = line[0];  // the piece reaching farthest along the line so far
+  double drawn = 0;       // length of the stretch's pieces, overlaps counted each time
+  for (std::size_t i = 0; i <= line.size(); ++i) {
+    if (i < line.size() && (i == first || line[i].t0 <= reach.t1 + tolerance)) {
+      if (line[i].t1 > reach.t1) reach = line[i];
+      drawn += line[i].t1 - line[i].t0;
+      continue;
+    }
+    if (i == first + 1) {
+      out.push_back(std::move(strokes[line[first].stroke]));
+    } else {
+      out.push_back(span_stroke(strokes, line[first], reach));
+      removed_px += std::max(0.0, drawn - (reach.t1 - line[first].t0));
+    }
+    if (i == line.size()) break;
+    first = i;
+    reach = line[i];
+    drawn = line[i].t1 - line[i].t0;
+  }
+}
+
 }  // namespace
 
 std::vector<Stroke> merge_collinear(std::vector<Stroke> strokes, double tolerance, double& removed_px) {
@@ -138,42 +173,18 @@ std::vector<Stroke> merge_collinear(std::vector<Stroke> strokes, double toleranc
   // near π) are not joined, which leaves near-horizontal duplicates drawn twice.
   double extent = 1;
   for (const Piece& p : pieces) extent = std::max({extent, std::abs(p.t0), std::abs(p.t1), std::abs(p.offset)});
-  std::sort(pieces.begin(), pieces.end(), [](const Piece& a, const Piece& b) {
-    return std::tie(a.angle, a.offset, a.t0, a.stroke) < std::tie(b.angle, b.offset, b.t0, b.stroke);
-  });
-  for_each_cluster(pieces, [](const Piece& p) { return p.angle; }, tolerance / extent, [&](std::size_t b, std::size_t e) {
-    std::vector<Piece> same_angle(pieces.begin() + static_cast<std::ptrdiff_t>(b), pieces.begin() + static_cast<std::ptrdiff_t>(e));
-    std::sort(same_angle.begin(), same_angle.end(), [](const Piece& x, const Piece& y) {
-      return std::tie(x.offset, x.t0, x.stroke) < std::tie(y.offset, y.t0, y.stroke);
+  std::sort(pieces.begin(), pieces.end(),
+            [](const Piece& a, const Piece& b) { return std::tie(a.angle, a.stroke) < std::tie(b.angle, b.stroke); });
+  for (const auto& angle_run : clusters(
+           pieces, [](const Piece& p) { return p.angle; }, tolerance / extent)) {
+    std::vector<Piece> same_angle = slice(pieces, angle_run);
+    std::sort(same_angle.begin(), same_angle.end(), [](const Piece& a, const Piece& b) {
+      return std::tie(a.offset, a.stroke) < std::tie(b.offset, b.stroke);
     });
-    for_each_cluster(same_angle, [](const Piece& p) { return p.offset; }, tolerance, [&](std::size_t lb, std::size_t le) {
-      std::vector<Piece> line(same_angle.begin() + static_cast<std::ptrdiff_t>(lb), same_angle.begin() + static_cast<std::ptrdiff_t>(le));
-      std::sort(line.begin(), line.end(), [](const Piece& x, const Piece& y) { return std::tie(x.t0, x.stroke) < std::tie(y.t0, y.stroke); });
-      std::size_t first = 0;
-      Piece hi = line[0];
-      double drawn = line[0].t1 - line[0].t0;
-      auto flush = [&](std::size_t last) {
-        if (last == first + 1) {
-          out.push_back(std::move(strokes[line[first].stroke]));
-        } else {
-          out.push_back(span_stroke(strokes, line[first], hi));
-          removed_px += std::max(0.0, drawn - (hi.t1 - line[first].t0));
-        }
-      };
-      for (std::size_t i = 1; i < line.size(); ++i) {
-        if (line[i].t0 > hi.t1 + tolerance) {
-          flush(i);
-          first = i;
-          hi = line[i];
-          drawn = 0;
-        } else if (line[i].t1 > hi.t1) {
-          hi = line[i];
-        }
-        drawn += line[i].t1 - line[i].t0;
-      }
-      flush(line.size());
-    });
-  });
+    for (const auto& line_run : clusters(
+             same_angle, [](const Piece& p) { return p.offset; }, tolerance))
+      union_on_line(slice(same_angle, line_run), strokes, tolerance, out, removed_px);
+  }
   return out;
 }
 

@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -25,7 +25,9 @@ using CliViews = test::CliTest;
 
 const std::string kBunny = PCSKETCH_DATA "/bunny.ply";
 
-std::size_t lines(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
+std::size_t lines(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
 
 Vec3d direction(const nlohmann::json& drawing) {
   const auto& d = drawing["camera"]["direction"];

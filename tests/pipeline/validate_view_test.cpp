@@ -32,19 +32,21 @@ TEST(ValidateView, ConflictingViewFlagsAreRefused) {
   EXPECT_EQ(refusal({.direction = Vec3d(1, 0, 0)}), "");
   EXPECT_EQ(refusal({.named = view::NamedView::Left}), "");
   EXPECT_EQ(refusal({.azimuth_deg = 30.0, .elevation_deg = 10.0}), "");
-  EXPECT_EQ(refusal({.projection = view::Projection::Perspective, .direction = Vec3d(1, 0, 0),
-                     .eye = Vec3d(-5, 0, 0)}),
+  EXPECT_EQ(refusal({.projection = view::Projection::Perspective, .direction = Vec3d(1, 0, 0), .eye = Vec3d(-5, 0, 0)}),
             "");
 }
 
 TEST(ValidateView, SightParallelToUpIsRefused) {
-  EXPECT_EQ(refusal({.direction = Vec3d(0, 0, -2), .up = Vec3d(0, 0, 1)}).rfind("--view: the direction of sight is "
-                                                                                "parallel to --up 0,0,1",
-                                                                                0),
+  EXPECT_EQ(refusal({.direction = Vec3d(0, 0, -2), .up = Vec3d(0, 0, 1)})
+                .rfind("--view: the direction of sight is "
+                       "parallel to --up 0,0,1",
+                       0),
             0u);
   // The default +z sight with a z up: the CLI gives the three-quarter view instead; the library names --up.
   EXPECT_EQ(refusal({.up = Vec3d(0, 0, 1)}).rfind("--up:", 0), 0u);
-  EXPECT_EQ(refusal({.projection = view::Projection::Perspective, .up = Vec3d(0, 1, 0), .eye = Vec3d(0, 5, 0),
+  EXPECT_EQ(refusal({.projection = view::Projection::Perspective,
+                     .up = Vec3d(0, 1, 0),
+                     .eye = Vec3d(0, 5, 0),
                      .target = Vec3d(0, -1, 0)})
                 .rfind("--eye/--target:", 0),
             0u);

@@ -100,9 +100,9 @@ TEST(PlotOrder, RandomStrokeSetsTravelLessAndKeepEverySegment) {
 
 // The pieces of one polyline, shuffled and reversed, become that polyline again: one stroke, no pen-up.
 TEST(PlotOrder, PiecesOfOneLineMergeIntoOneStroke) {
-  const Drawing d = drawing({stroke(LineKind::Contour, {{30, 0}, {20, 0}}), stroke(LineKind::Contour, {{0, 0}, {10, 0}}),
-                             stroke(LineKind::Contour, {{20, 0}, {10, 0.04f}}),
-                             stroke(LineKind::Contour, {{30.1f, 0}, {40, 5}})});
+  const Drawing d =
+      drawing({stroke(LineKind::Contour, {{30, 0}, {20, 0}}), stroke(LineKind::Contour, {{0, 0}, {10, 0}}),
+               stroke(LineKind::Contour, {{20, 0}, {10, 0.04f}}), stroke(LineKind::Contour, {{30.1f, 0}, {40, 5}})});
   const PlotterResult r = plot_order(d, kMmPerPx, {.min_stroke_mm = 0});
   ASSERT_EQ(r.drawing.strokes.size(), 1u);
   EXPECT_EQ(r.joins, 3u);
@@ -124,7 +124,7 @@ TEST(PlotOrder, GreedyOrderFromTheOriginReversingStrokes) {
   EXPECT_EQ(r.drawing.strokes[0].image_points, (std::vector<Vec2f>{{0, 0}, {10, 0}}));
   EXPECT_EQ(r.drawing.strokes[1].image_points, (std::vector<Vec2f>{{20, 0}, {25, 0}}));
   EXPECT_EQ(r.drawing.strokes[2].image_points, (std::vector<Vec2f>{{40, 0}, {50, 0}}));
-  EXPECT_DOUBLE_EQ(r.after.pen_up_mm, 25 * kMmPerPx);  // 10 → 20 and 25 → 40
+  EXPECT_DOUBLE_EQ(r.after.pen_up_mm, 25 * kMmPerPx);          // 10 → 20 and 25 → 40
   EXPECT_DOUBLE_EQ(r.before.pen_up_mm, (40 + 15) * kMmPerPx);  // 40 → 0 and 10 → 25
 }
 
@@ -169,25 +169,26 @@ TEST(PlotOrder, GridSortMatchesBruteForceGreedy) {
 TEST(PlotOrder, CollinearDuplicateHatchingIsDrawnOnce) {
   const Drawing d = drawing({stroke(LineKind::Hatch, {{0, 0}, {10, 10}}), stroke(LineKind::Hatch, {{20, 20}, {5, 5}}),
                              stroke(LineKind::Hatch, {{0, 0}, {10, 10}}),
-                             stroke(LineKind::Hatch, {{0, 2}, {10, 12}}),  // parallel, 1.4 px away: kept
+                             stroke(LineKind::Hatch, {{0, 2}, {10, 12}}),      // parallel, 1.4 px away: kept
                              stroke(LineKind::Hatch, {{40, 40}, {50, 50}})});  // same line, apart: kept
   const PlotterResult r = plot_order(d, kMmPerPx, {.merge_tolerance_mm = 0, .min_stroke_mm = 0});
   ASSERT_EQ(r.drawing.strokes.size(), 3u);
   const double drawn_twice = 10 * std::sqrt(2.0) + 5 * std::sqrt(2.0);  // the copy of 0–10, and 5–10 again
   EXPECT_NEAR(r.duplicate_hatching_mm, drawn_twice * kMmPerPx, 1e-4);
   EXPECT_NEAR(r.before.pen_down_mm - r.after.pen_down_mm, drawn_twice * kMmPerPx, 1e-4);
-  std::vector<Segment> expected = segments(drawing({stroke(LineKind::Hatch, {{0, 0}, {20, 20}}),
-                                                    stroke(LineKind::Hatch, {{0, 2}, {10, 12}}),
-                                                    stroke(LineKind::Hatch, {{40, 40}, {50, 50}})}));
+  std::vector<Segment> expected =
+      segments(drawing({stroke(LineKind::Hatch, {{0, 0}, {20, 20}}), stroke(LineKind::Hatch, {{0, 2}, {10, 12}}),
+                        stroke(LineKind::Hatch, {{40, 40}, {50, 50}})}));
   EXPECT_EQ(segments(r.drawing), expected);
   // Contours are never treated so: two identical contour strokes stay two (merged end to end).
-  const Drawing contours = drawing({stroke(LineKind::Contour, {{0, 0}, {10, 10}}), stroke(LineKind::Contour, {{0, 0}, {10, 10}})});
+  const Drawing contours =
+      drawing({stroke(LineKind::Contour, {{0, 0}, {10, 10}}), stroke(LineKind::Contour, {{0, 0}, {10, 10}})});
   EXPECT_EQ(plot_order(contours, kMmPerPx, {.min_stroke_mm = 0}).after.pen_down_mm,
             plot_stats(contours, kMmPerPx).pen_down_mm);
 }
 
 TEST(PlotOrder, DabsAreLeftOutAndLayersStayApart) {
-  const Drawing d = drawing({stroke(LineKind::Contour, {{0, 0}, {1, 0}}),    // 0.25 mm: a dab
+  const Drawing d = drawing({stroke(LineKind::Contour, {{0, 0}, {1, 0}}),      // 0.25 mm: a dab
                              stroke(LineKind::Contour, {{100, 0}, {110, 0}}),  // 2.5 mm
                              stroke(LineKind::Ridge, {{110, 0}, {120, 0}}),    // meets the contour: other layer
                              stroke(LineKind::Contour, {{0, 50}, {10, 50}, {10, 60}}, true)});

@@ -85,8 +85,10 @@ TEST(Camera, NamedViewsRelativeToUpZUp) {
   const Camera az = make_camera(pts, Vec3d::Zero(), {.up = z_up, .azimuth_deg = -90.0, .elevation_deg = 0.0});
   EXPECT_TRUE(right.forward.isApprox(az.forward, 1e-6f));
   // The three-quarter view looks 15 degrees down, never along up.
-  const Camera three_quarter = make_camera(
-      pts, Vec3d::Zero(), {.up = z_up, .azimuth_deg = kThreeQuarterAzimuthDeg, .elevation_deg = kThreeQuarterElevationDeg});
+  const Camera three_quarter = make_camera(pts, Vec3d::Zero(),
+                                           {.up = z_up,
+                                            .azimuth_deg = kThreeQuarterAzimuthDeg,
+                                            .elevation_deg = kThreeQuarterElevationDeg});
   EXPECT_NEAR(three_quarter.forward.z(), -std::sin(15.f * 3.14159265f / 180.f), 1e-5f);
 }
 

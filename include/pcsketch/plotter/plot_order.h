@@ -29,9 +29,9 @@ struct PlotterOptions {
 /// What the pen does for one drawing: ink laid and travel in the air, summed over the layers (a layer is plotted as
 /// one pass; the travel from one layer to the next and from the home position is not counted).
 struct PlotStats {
-  double pen_down_mm = 0;    ///< length of the drawn strokes
-  double pen_up_mm = 0;      ///< from each stroke's end to the next stroke's start within its layer
-  std::size_t strokes = 0;   ///< pen-downs
+  double pen_down_mm = 0;   ///< length of the drawn strokes
+  double pen_up_mm = 0;     ///< from each stroke's end to the next stroke's start within its layer
+  std::size_t strokes = 0;  ///< pen-downs
 
   nlohmann::json to_json() const;
 };
