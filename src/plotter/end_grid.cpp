@@ -47,7 +47,10 @@ void EndGrid::rebuild() {
     if (alive_[i]) ids_[fill[cell_of_point[i]]++] = static_cast<std::uint32_t>(i);
 }
 
-long EndGrid::cell_of(double x, double lo) const { return static_cast<long>(std::floor((x - lo) / cell_)); }
+long EndGrid::cell_of(double x, double lo) const {
+  // Clamped: a query far outside a grid of tiny cells would overflow the conversion.
+  return static_cast<long>(std::clamp(std::floor((x - lo) / cell_), -1e15, 1e15));
+}
 
 void EndGrid::remove(std::size_t id) {
   if (id >= points_.size() || !alive_[id]) return;

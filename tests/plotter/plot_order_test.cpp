@@ -213,5 +213,16 @@ TEST(PlotOrder, HiddenStrokesArePlottedOnlyWhenDrawn) {
   EXPECT_THROW(plot_order(d, 0.0), Error);
 }
 
+// Hand-built drawings may hold anything finite: ends far from each other, or all on one spot, still sort.
+TEST(PlotOrder, ExtremeCoordinatesStillSort) {
+  std::vector<Stroke> strokes;
+  for (int i = 0; i < 5; ++i) strokes.push_back(stroke(LineKind::Contour, {{1e30f, 1e30f}, {1e30f, 1e30f}}));
+  strokes.push_back(stroke(LineKind::Contour, {{0, 0}, {0, 1e-30f}}));
+  strokes.push_back(stroke(LineKind::Contour, {{-3e38f, 0}, {3e38f, 0}}));
+  const PlotterResult r = plot_order(drawing(strokes), kMmPerPx, {.merge_tolerance_mm = 0, .min_stroke_mm = 0});
+  EXPECT_EQ(r.drawing.strokes.size(), 3u);  // the five dots at one spot are joined into one
+  EXPECT_LE(r.after.pen_up_mm, r.before.pen_up_mm);
+}
+
 }  // namespace
 }  // namespace pcsketch::plotter
