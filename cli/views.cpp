@@ -12,7 +12,20 @@ namespace pcsketch::cli {
 
 namespace {
 
-const char* const kViewNames = "front, back, left, right, top, bottom, iso";
+/// The named views, in view::NamedView order.
+std::vector<std::string> view_names() {
+  std::vector<std::string> names;
+  for (int v = 0; v <= static_cast<int>(view::NamedView::Iso); ++v)
+    names.emplace_back(view::to_string(static_cast<view::NamedView>(v)));
+  return names;
+}
+
+/// "front, back, …" for messages and help.
+std::string listed(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
 
 /// Flags that choose the direction of sight, as the user spelled them; --elevation alone may tilt a turntable.
 std::vector<std::string> sight_flags(const view::CameraOptions& c) {
@@ -38,19 +51,20 @@ Vec3d parse_vec3(const std::string& flag, const std::string& text) {
 
 void add_camera_options(CLI::App* cmd, view::CameraOptions& c, ViewRequest& request) {
   const std::string group = "Camera";
+  const std::string names = listed(view_names());
   cmd->add_option_function<std::string>(
          "--view",
-         [&c](const std::string& s) {
+         [&c, names](const std::string& s) {
            if (const auto named = view::parse_named_view(s)) {
              c.named = named;
              return;
            }
            if (s.find(',') == std::string::npos)
-             throw CLI::ValidationError("--view", "expected a view name (" + std::string(kViewNames) +
-                                                      ") or three numbers X,Y,Z, got " + quote(s));
+             throw CLI::ValidationError("--view",
+                                        "expected a view name (" + names + ") or three numbers X,Y,Z, got " + quote(s));
            c.direction = parse_vec3("--view", s);
          },
-         "View: a name relative to --up (" + std::string(kViewNames) +
+         "View: a name relative to --up (" + names +
              ") or the direction of sight X,Y,Z (default 0,0,1: the paper looks along +z)")
       ->group(group);
   add_vec3(cmd, "--up", "Up hint X,Y,Z (default 0,1,0); alone, without a view, gives the three-quarter view",
@@ -71,7 +85,7 @@ void add_camera_options(CLI::App* cmd, view::CameraOptions& c, ViewRequest& requ
                   "Several named views from one analysis, e.g. front,top,iso: one file per view, out.svg -> "
                   "out-front.svg, …")
       ->delimiter(',')
-      ->check(CLI::IsMember({"front", "back", "left", "right", "top", "bottom", "iso"}))
+      ->check(CLI::IsMember(view_names()))
       ->group(group);
   cmd->add_option("--turntable", request.turntable,
                   "N views around up, 360/N degrees apart, from one analysis, at --elevation (default 15): "
