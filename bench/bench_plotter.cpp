@@ -4,7 +4,8 @@
 //   bench_plotter [PAGE_MM]   page width in millimetres (default 200)
 //
 // Models: the bundled sample (data/bunny.ply, --azimuth -35 --elevation 15), and from ../shared/data fandisk.off
-// (--view 1,1,1) and building.ply (--up 0,0,1 --view 1,0.7,-0.6), the views of scripts/gallery.sh. A model that is
+// (--view 1,1,1, and the paper's +z view, where paper-mode hatch lines of several ridges fall on one line) and
+// building.ply (--up 0,0,1 --view 1,0.7,-0.6), the views of scripts/gallery.sh. A model that is
 // not there is skipped.
 
 #include <filesystem>
@@ -30,9 +31,10 @@ int run(int argc, char** argv) {
   const std::vector<Model> models = {
       {"sample (data/bunny.ply)", PCSKETCH_DATA "/bunny.ply", {.azimuth_deg = -35.0, .elevation_deg = 15.0}},
       {"fandisk", shared_data("fandisk.off"), {.direction = Vec3d(1, 1, 1)}},
+      {"fandisk, +z (paper's view)", shared_data("fandisk.off"), {}},
       {"building", shared_data("building.ply"), {.direction = Vec3d(1, 0.7, -0.6), .up = Vec3d(0, 0, 1)}}};
   Table table({"model", "strokes", "pen-down mm", "pen-up mm", "strokes", "pen-down mm", "pen-up mm", "pen-up ratio",
-               "joins", "dropped", "ms"});
+               "joins", "dropped", "hatching once mm", "ms"});
   for (Model m : models) {
     if (!std::filesystem::exists(m.path)) {
       std::cout << "skipping " << m.name << " (" << m.path << " not found)\n";
@@ -49,7 +51,7 @@ int run(int argc, char** argv) {
     table.add_row({m.name, grouped(r.before.strokes), fixed(r.before.pen_down_mm, 0), fixed(r.before.pen_up_mm, 0),
                    grouped(r.after.strokes), fixed(r.after.pen_down_mm, 0), fixed(r.after.pen_up_mm, 0),
                    fixed(r.before.pen_up_mm / std::max(r.after.pen_up_mm, 1e-9), 2), grouped(r.joins),
-                   grouped(r.short_strokes_dropped), fixed(ms, 1)});
+                   grouped(r.short_strokes_dropped), fixed(r.duplicate_hatching_mm, 0), fixed(ms, 1)});
   }
   std::cout << "page " << fixed(page_mm, 0) << " mm wide, 512 px; columns 2-4 unsorted (as drawn), 5-7 --plotter\n"
             << table.to_string();
