@@ -88,7 +88,7 @@ detail::EndGrid end_grid(const std::vector<Stroke>& strokes) {
 
 /// vpype's linemerge: each stroke in input order, still unused, grows at its end and then at its start by the
 /// unused stroke with the nearest end within `tolerance`, reversed when that end faces the wrong way.
-std::vector<Stroke> merge(std::vector<Stroke> strokes, double tolerance, std::size_t& joins) {
+std::vector<Stroke> merge_ends(std::vector<Stroke> strokes, double tolerance, std::size_t& joins) {
   detail::EndGrid grid = end_grid(strokes);
   std::vector<std::uint8_t> used(strokes.size(), 0);
   auto take = [&](std::size_t i) {
@@ -127,7 +127,7 @@ std::vector<Stroke> merge(std::vector<Stroke> strokes, double tolerance, std::si
 
 /// vpype's linesort: from the page origin, always the stroke with the nearest end next, reversed when that is its
 /// end.
-std::vector<Stroke> sort(std::vector<Stroke> strokes) {
+std::vector<Stroke> sort_greedy(std::vector<Stroke> strokes) {
   detail::EndGrid grid = end_grid(strokes);
   std::vector<Stroke> out;
   out.reserve(strokes.size());
@@ -152,7 +152,7 @@ std::vector<Stroke> order_layer(const std::vector<Stroke>& input, double mm_per_
   double removed_px = 0;
   strokes = detail::merge_collinear(std::move(strokes), o.collinear_tolerance_mm / mm_per_pixel, removed_px);
   std::size_t joins = 0;
-  if (o.merge) strokes = merge(std::move(strokes), o.merge_tolerance_mm / mm_per_pixel, joins);
+  if (o.merge) strokes = merge_ends(std::move(strokes), o.merge_tolerance_mm / mm_per_pixel, joins);
   std::vector<Stroke> kept;
   std::size_t dropped = 0;
   for (Stroke& s : strokes) {
@@ -161,7 +161,7 @@ std::vector<Stroke> order_layer(const std::vector<Stroke>& input, double mm_per_
     else
       kept.push_back(std::move(s));
   }
-  if (o.sort) kept = sort(std::move(kept));
+  if (o.sort) kept = sort_greedy(std::move(kept));
   if (travel_px(kept) > travel_px(input)) return input;
   result.duplicate_hatching_mm += removed_px * mm_per_pixel;
   result.joins += joins;
