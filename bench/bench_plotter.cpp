@@ -1,7 +1,8 @@
 // Plotter paths (plotter/plot_order.h) on the gallery's views: pen-down and pen-up travel and stroke count of the
 // drawing as written without ordering, against the merged and sorted one, on a 200 mm page at the gallery's 512 px.
 //
-//   bench_plotter [PAGE_MM]   page width in millimetres (default 200)
+//   bench_plotter [PAGE_MM [N ...]]   page width in millimetres (default 200); each N also times plot_order on N
+//                                     random short strokes in five layers on a 4000 px image (near-linear check)
 //
 // Models: the bundled sample (data/bunny.ply, --azimuth -35 --elevation 15), and from ../shared/data fandisk.off
 // (--view 1,1,1, and the paper's +z view, where paper-mode hatch lines of several ridges fall on one line) and
@@ -10,6 +11,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <random>
 #include <string>
 
 #include "pcsketch/io/read_cloud.h"
@@ -24,6 +26,35 @@ struct Model {
   std::string name, path;
   view::CameraOptions camera;
 };
+
+/// `n` strokes 0–7 px long, uniformly over a 4000 px square, spread over the five line kinds: pieces that rarely
+/// meet, so merging finds few joins and sorting does the work.
+Drawing random_strokes(std::size_t n) {
+  std::mt19937 rng(12111);
+  std::uniform_real_distribution<float> coord(0.f, 4000.f), step(-5.f, 5.f);
+  Drawing d;
+  d.width = d.height = 4000;
+  for (std::size_t i = 0; i < n; ++i) {
+    Stroke s;
+    s.kind = static_cast<LineKind>(i % 5);
+    const Vec2f a(coord(rng), coord(rng));
+    s.image_points = {a, a + Vec2f(step(rng), step(rng))};
+    d.strokes.push_back(std::move(s));
+  }
+  return d;
+}
+
+void time_random(const std::vector<std::size_t>& counts) {
+  Table table({"random strokes", "seconds", "pen-up mm", "pen-up mm --plotter", "strokes --plotter"});
+  for (const std::size_t n : counts) {
+    const Drawing d = random_strokes(n);
+    Stopwatch clock;
+    const plotter::PlotterResult r = plotter::plot_order(d, 0.05, {.min_stroke_mm = 0});
+    table.add_row({grouped(n), fixed(clock.seconds(), 3), fixed(r.before.pen_up_mm, 0), fixed(r.after.pen_up_mm, 0),
+                   grouped(r.after.strokes)});
+  }
+  std::cout << table.to_string();
+}
 
 int run(int argc, char** argv) {
   const double page_mm = argc > 1 ? std::stod(argv[1]) : 200.0;
@@ -55,6 +86,9 @@ int run(int argc, char** argv) {
   }
   std::cout << "page " << fixed(page_mm, 0) << " mm wide, 512 px; columns 2-4 unsorted (as drawn), 5-7 --plotter\n"
             << table.to_string();
+  std::vector<std::size_t> counts;
+  for (int i = 2; i < argc; ++i) counts.push_back(std::stoul(argv[i]));
+  if (!counts.empty()) time_random(counts);
   return 0;
 }
 
