@@ -13,6 +13,7 @@
 
 #include "commands.h"
 #include "options.h"
+#include "views.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/pipeline.h"
@@ -31,30 +32,12 @@ struct DrawArgs {
   std::string json;
   std::string stages;
   bool timings = false;
+  ViewRequest views;
   io::ReadOptions read;
   DrawOptions options;
 };
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
-
-/// "X,Y,Z" → vector; throws CLI::ValidationError (exit 1) otherwise.
-Vec3d parse_vec3(const std::string& flag, const std::string& text) {
-  std::istringstream in(text);
-  Vec3d v;
-  char c1 = 0, c2 = 0;
-  if (!(in >> v.x() >> c1 >> v.y() >> c2 >> v.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
-      !v.allFinite())
-    throw CLI::ValidationError(flag, "expected three numbers X,Y,Z, got " + quote(text));
-  return v;
-}
-
-/// A vector-valued flag "X,Y,Z" that stores into `target` when given.
-template <class Set>
-CLI::Option* add_vec3(CLI::App* cmd, const std::string& name, const std::string& help, Set set) {
-  const std::string flag = name.substr(name.rfind(',') + 1);
-  return cmd->add_option_function<std::string>(
-      name, [flag, set](const std::string& s) { set(parse_vec3(flag, s)); }, help);
-}
 
 void print_timings(const Timings& t, const Prepared& prepared, const std::string& reduction) {
   const auto paper = t.table_rows();
@@ -89,21 +72,28 @@ std::vector<std::string> stage_extensions(const std::vector<std::string>& output
   return extensions;
 }
 
-/// Every output checked before the input is read: format, directory, no file written twice, --stages never
-/// overwriting an -o file.
-void check_outputs(const DrawArgs& args) {
+/// The --stages directory of one view: DIR itself, or DIR/NAME with several views.
+fs::path stage_dir(const std::string& stages, const std::string& view) {
+  return view.empty() ? fs::path(stages) : fs::path(stages) / view;
+}
+
+/// Every output of every view checked before the input is read: format, directory, no file written twice, --stages
+/// never overwriting an -o file.
+void check_outputs(const DrawArgs& args, const std::vector<NamedCamera>& views) {
   std::vector<fs::path> keys;
-  for (const std::string& path : args.outputs) {
-    try {
-      render::check_output(path);
-    } catch (const Error& e) {
-      throw OptionError(path == args.json ? "--json" : "--output", e.what());
+  for (const NamedCamera& v : views)
+    for (const std::string& given : args.outputs) {
+      const std::string path = view_path(given, v.name);
+      try {
+        render::check_output(path);
+      } catch (const Error& e) {
+        throw OptionError(given == args.json ? "--json" : "--output", e.what());
+      }
+      const fs::path key = same_file_key(path);
+      if (std::find(keys.begin(), keys.end(), key) != keys.end())
+        throw OptionError("--output", quote(path) + " is written twice");
+      keys.push_back(key);
     }
-    const fs::path key = same_file_key(path);
-    if (std::find(keys.begin(), keys.end(), key) != keys.end())
-      throw OptionError("--output", quote(path) + " is written twice");
-    keys.push_back(key);
-  }
   if (args.stages.empty()) return;
   std::error_code ec;
   const fs::file_status status = fs::status(args.stages, ec);
@@ -114,12 +104,42 @@ void check_outputs(const DrawArgs& args) {
     existing = existing.parent_path();
   if (!fs::is_directory(existing, ec) || ::access(existing.c_str(), W_OK) != 0)
     throw OptionError("--stages", quote(existing.string()) + " is not a writable directory");
-  for (const std::string_view stem : kStageNames)
-    for (const std::string& ext : stage_extensions(args.outputs)) {
-      const fs::path stage = fs::path(args.stages) / (std::string(stem) + ext);
-      if (std::find(keys.begin(), keys.end(), same_file_key(stage.string())) != keys.end())
-        throw OptionError("--stages", "would overwrite the output " + quote(stage.string()));
-    }
+  for (const NamedCamera& v : views)
+    for (const std::string_view stem : kStageNames)
+      for (const std::string& ext : stage_extensions(args.outputs)) {
+        const fs::path stage = stage_dir(args.stages, v.name) / (std::string(stem) + ext);
+        if (std::find(keys.begin(), keys.end(), same_file_key(stage.string())) != keys.end())
+          throw OptionError("--stages", "would overwrite the output " + quote(stage.string()));
+      }
+}
+
+/// The outputs and stage images of one view.
+void draw_one_view(const DrawArgs& args, const Prepared& prepared, const NamedCamera& v, const GlobalOptions& global,
+                   Timings& timings) {
+  const DrawOptions& options = args.options;
+  if (!args.outputs.empty()) {
+    DrawResult result = draw_view(prepared, v.camera, options);
+    print_warnings(global, result.warnings);
+    const auto start = Clock::now();
+    std::vector<fs::path> paths;
+    for (const std::string& path : args.outputs) paths.push_back(view_path(path, v.name));
+    render::write_drawings(result.drawing, paths, options.render);
+    result.timings.drawing += seconds_since(start);
+    timings += result.timings;
+  }
+  if (args.stages.empty()) return;
+  const fs::path dir = stage_dir(args.stages, v.name);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(FileLoc{dir.string(), {}, {}}, "cannot create the directory: " + ec.message());
+  const std::vector<std::string> extensions = stage_extensions(args.outputs);
+  // Their warnings are the ones draw_view printed for the same camera.
+  const auto stages = stage_drawings(prepared, v.camera, options).stages;
+  tbb::parallel_for_each(stages.begin(), stages.end(), [&](const auto& stage) {
+    std::vector<fs::path> paths;
+    for (const std::string& ext : extensions) paths.push_back(dir / (stage.first + ext));
+    render::write_drawings(stage.second, paths, options.render);
+  });
 }
 
 void run_draw(DrawArgs& args, const GlobalOptions& global) {
@@ -127,8 +147,11 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
     throw OptionError("draw", "nothing to write: give -o OUT.svg|png|pdf, --json OUT.json or --stages DIR");
   if (!args.json.empty()) args.outputs.push_back(args.json);
   // Everything that can be refused is refused before the input is read.
+  const std::vector<NamedCamera> views = resolve_views(args.options.camera, args.views);
+  args.options.camera = views.front().camera;  // the camera options record the first view
   validate(args.options);
-  check_outputs(args);
+  for (const NamedCamera& v : views) validate(args.options, v.camera);
+  check_outputs(args, views);
 
   DrawOptions& options = args.options;
   options.progress = make_progress(global);
@@ -145,27 +168,8 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
   print_warnings(global, prepared.warnings);
   timings += prepared.timings;
 
-  if (!args.outputs.empty()) {
-    DrawResult result = draw_view(prepared, options.camera, options);
-    print_warnings(global, result.warnings);
-    start = Clock::now();
-    render::write_drawings(result.drawing, {args.outputs.begin(), args.outputs.end()}, options.render);
-    result.timings.drawing += seconds_since(start);
-    timings += result.timings;
-  }
-  if (!args.stages.empty()) {
-    std::error_code ec;
-    fs::create_directories(args.stages, ec);
-    if (ec) throw Error(FileLoc{args.stages, {}, {}}, "cannot create the directory: " + ec.message());
-    const std::vector<std::string> extensions = stage_extensions(args.outputs);
-    // Their warnings are the ones draw_view printed for the same camera.
-    const auto stages = stage_drawings(prepared, options.camera, options).stages;
-    tbb::parallel_for_each(stages.begin(), stages.end(), [&](const auto& stage) {
-      std::vector<fs::path> paths;
-      for (const std::string& ext : extensions) paths.push_back(fs::path(args.stages) / (stage.first + ext));
-      render::write_drawings(stage.second, paths, options.render);
-    });
-  }
+  // One analysis for every view.
+  for (const NamedCamera& v : views) draw_one_view(args, prepared, v, global, timings);
   if (args.timings) print_timings(timings, prepared, reduction);
 }
 
@@ -188,47 +192,7 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
                   "f_shadow (formats of -o, PNG if none)");
   cmd->add_flag("--timings", args->timings, "Print seconds per stage (the paper's Table 2 rows marked *)");
 
-  // Camera (views issue).
-  const std::string cam = "Camera";
-  add_vec3(cmd, "--view", "Direction of sight X,Y,Z (default 0,0,1: the paper looks along +z)", [&o](const Vec3d& v) {
-    o.camera.direction = v;
-  })->group(cam);
-  add_vec3(cmd, "--up", "Up hint X,Y,Z (default 0,1,0)", [&o](const Vec3d& v) { o.camera.up = v; })->group(cam);
-  cmd->add_option_function<double>(
-         "--azimuth", [&o](const double& a) { o.camera.azimuth_deg = a; },
-         "Viewer azimuth around up, degrees (0 = looking along +z)")
-      ->group(cam);
-  cmd->add_option_function<double>(
-         "--elevation", [&o](const double& e) { o.camera.elevation_deg = e; },
-         "Viewer elevation above the horizon, degrees (positive looks down)")
-      ->group(cam);
-  cmd->add_flag_function(
-         "--perspective", [&o](std::int64_t) { o.camera.projection = view::Projection::Perspective; },
-         "Perspective projection (default orthographic)")
-      ->group(cam);
-  add_vec3(cmd, "--eye", "Perspective eye point X,Y,Z (world)", [&o](const Vec3d& v) { o.camera.eye = v; })->group(cam);
-  add_vec3(cmd, "--target", "Perspective target point X,Y,Z (world)", [&o](const Vec3d& v) {
-    o.camera.target = v;
-  })->group(cam);
-  cmd->add_option("--fov", o.camera.fov_deg, "Perspective vertical field of view, degrees")
-      ->capture_default_str()
-      ->group(cam);
-  cmd->add_option_function<std::string>(
-         "--size",
-         [&o](const std::string& s) {
-           int w = 0, h = 0;
-           char x = 0;
-           std::istringstream in(s);
-           if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || w <= 0 || h <= 0 || !(in >> std::ws).eof())
-             throw CLI::ValidationError("--size", "expected WxH in pixels, e.g. 1024x768, got " + quote(s));
-           o.camera.width = w;
-           o.camera.height = h;
-         },
-         "Image size WxH in pixels (default 1024x1024)")
-      ->group(cam);
-  cmd->add_option("--margin", o.camera.margin, "Empty border, fraction of the smaller image side")
-      ->capture_default_str()
-      ->group(cam);
+  add_camera_options(cmd, o.camera, args->views);
 
   add_surface_options(cmd, o.surface);
   add_ridge_valley_options(cmd, o.features);
@@ -356,11 +320,30 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("!--no-valleys", o.lines.valleys, "Leave out valley lines")->group(out);
   cmd->add_flag("!--no-hatching", o.lines.hatching, "Leave out shadow hatching and shading")->group(out);
   cmd->add_flag("!--no-boundaries", o.lines.boundaries, "Leave out the border lines of open scans")->group(out);
-  cmd->add_flag("--plotter", o.render.plotter, "Pen-plotter output: centre-lines of one width, no grey fills")
+  cmd->add_flag("--plotter", o.render.plotter,
+                "Pen-plotter output: centre-lines of one width, no grey fills; strokes merged where their ends meet, "
+                "collinear hatching drawn once, dabs left out, each layer sorted to shorten pen-up travel")
       ->group(out);
-  cmd->add_option("--pen-width", o.render.pen_width, "Plotter line width, pixels")
-      ->capture_default_str()
+  CLI::Option* pen_mm = cmd->add_option("--pen-width-mm", o.render.pen_width_mm, "Plotter line width, page millimetres")
+                            ->capture_default_str()
+                            ->check(CLI::PositiveNumber)
+                            ->group(out);
+  cmd->add_option("--pen-width", o.render.pen_width,
+                  "Plotter line width in image pixels (the old unit, kept for old scripts: prefer --pen-width-mm)")
       ->check(CLI::PositiveNumber)
+      ->excludes(pen_mm)
+      ->group(out);
+  cmd->add_option("--min-stroke-mm", o.plotter.min_stroke_mm,
+                  "Plotter: leave out strokes shorter than this after merging, page millimetres (0 keeps all)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(out);
+  cmd->add_option("--merge-tolerance-mm", o.plotter.merge_tolerance_mm,
+                  "Plotter: join strokes whose ends are this close, page millimetres (0: only ends that coincide)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(out);
+  cmd->add_flag("!--no-plot-sort", o.plotter.sort, "Plotter: keep the drawing order of strokes (no pen-travel sort)")
       ->group(out);
   cmd->add_option_function<double>(
          "--page-width-mm", [&o](const double& w) { o.render.page_width_mm = w; },

@@ -22,7 +22,8 @@ nlohmann::json vec_json(const Vec3d& v) { return nlohmann::json::array({v.x(), v
 
 nlohmann::json camera_options_json(const view::CameraOptions& c) {
   nlohmann::json j = {{"projection", c.projection == view::Projection::Orthographic ? "orthographic" : "perspective"},
-                      {"direction", vec_json(c.direction)},
+                      {"direction", c.direction ? vec_json(*c.direction) : nlohmann::json(nullptr)},
+                      {"view", c.named ? nlohmann::json(view::to_string(*c.named)) : nlohmann::json(nullptr)},
                       {"up", vec_json(c.up)},
                       {"fov_deg", c.fov_deg},
                       {"width", c.width},
@@ -149,6 +150,23 @@ Drawing style(const Prepared& prepared, const view::ViewResult& view, const Styl
   return d;
 }
 
+/// With render.plotter, the drawing becomes plotter paths (plotter/plot_order.h); the pen travel before and after
+/// is recorded in Drawing::plotter.
+void plotter_paths(Drawing& drawing, const DrawOptions& options, Timings& timings) {
+  if (!options.render.plotter) return;
+  const auto start = Clock::now();
+  const bool hidden = options.render.hidden_lines == render::HiddenLines::Dashed;
+  plotter::PlotterResult plotted = plotter::plot_order(
+      drawing, render::mm_per_pixel(drawing.width, options.render), options.plotter, hidden);
+  drawing = std::move(plotted.drawing);
+  drawing.plotter = {{"before_ordering", plotted.before.to_json()},
+                     {"after_ordering", plotted.after.to_json()},
+                     {"joins", plotted.joins},
+                     {"duplicate_hatching_mm", plotted.duplicate_hatching_mm},
+                     {"short_strokes_dropped", plotted.short_strokes_dropped}};
+  timings.drawing += seconds_since(start);
+}
+
 view::ViewResult compute_view(const Prepared& prepared, const view::Camera& camera, const DrawOptions& options,
                               Timings& timings, Warnings& warnings) {
   std::vector<Polyline> lines = prepared.features.lines;
@@ -226,6 +244,7 @@ nlohmann::json DrawOptions::to_json() const {
           {"thickness", thickness.to_json()},
           {"shadow", shadow.to_json()},
           {"render", render.to_json()},
+          {"plotter", plotter.to_json()},
           {"lines",
            {{"contours", lines.contours}, {"ridges", lines.ridges}, {"valleys", lines.valleys},
             {"hatching", lines.hatching}, {"boundaries", lines.boundaries}}},
@@ -292,6 +311,7 @@ DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera
   const view::ViewResult v = compute_view(prepared, camera, options, result.timings, result.warnings);
   result.drawing = style(prepared, v, {options.lines, options.thickness}, options.shadow, parameters, result.timings,
                          result.warnings);
+  plotter_paths(result.drawing, options, result.timings);
   return result;
 }
 
@@ -333,6 +353,7 @@ StageDrawings stage_drawings(const Prepared& prepared, const view::CameraOptions
   for (const auto& [stem, request] : columns) {
     style_warnings.clear();
     out.stages.emplace_back(stem, style(prepared, v, request, options.shadow, parameters, out.timings, style_warnings));
+    plotter_paths(out.stages.back().second, options, out.timings);
   }
   out.warnings.insert(out.warnings.end(), style_warnings.begin(), style_warnings.end());
   return out;

@@ -6,9 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "pcsketch/neighbourhood/neighbourhoods.h"
 #include "pcsketch/pipeline.h"
+#include "pcsketch/view/camera.h"
 
 namespace pcsketch {
 
@@ -40,14 +43,43 @@ void direction(const std::string& flag, const Vec3d& v) {
   if (v.cwiseAbs().maxCoeff() == 0) throw OptionError(flag, "must be a non-zero vector");
 }
 
+std::string vec_text(const Vec3d& v) { return number(v.x()) + "," + number(v.y()) + "," + number(v.z()); }
+
 /// A point: finite, and near enough for float image coordinates (the camera JSON held null from 1e30 on).
 void point(const std::string& flag, const Vec3d& v) {
   if (!v.allFinite() || v.cwiseAbs().maxCoeff() > 1e15)
     throw OptionError(flag, "must be three finite numbers of magnitude at most 1e15");
 }
 
+/// One way of choosing the direction of sight: `--view X,Y,Z`, `--view NAME`, `--azimuth/--elevation` or
+/// `--eye` with `--target`; two would silently ignore one.
+void one_sight(const view::CameraOptions& c) {
+  std::vector<std::string> given;
+  if (c.direction) given.emplace_back("--view X,Y,Z");
+  if (c.named) given.push_back("--view " + std::string(view::to_string(*c.named)));
+  if (c.azimuth_deg || c.elevation_deg) given.emplace_back(c.azimuth_deg ? "--azimuth" : "--elevation");
+  if (c.eye && c.target) given.emplace_back("--eye/--target");
+  if (given.size() > 1)
+    throw OptionError(given[0].substr(0, given[0].find(' ')),
+                      "conflicts with " + given[1] + ": both set the direction of sight, give one");
+}
+
+/// A sight parallel to up leaves the image without an up direction (named and azimuth/elevation views define it).
+void sight_not_along_up(const view::CameraOptions& c) {
+  if (c.named || c.azimuth_deg || c.elevation_deg) return;
+  const Vec3d f = view::sight_frame(c).forward;
+  const Vec3d sight = f / f.cwiseAbs().maxCoeff(), up = c.up / c.up.cwiseAbs().maxCoeff();
+  if (sight.normalized().cross(up.normalized()).norm() > 1e-6) return;
+  const std::string flag = c.eye && c.target ? "--eye/--target" : c.direction ? "--view" : "--up";
+  const std::string what = c.eye && c.target ? "the sight from --eye to --target"
+                           : c.direction     ? "the direction of sight"
+                                             : "the default direction of sight +z";
+  throw OptionError(flag, what + " is parallel to --up " + vec_text(c.up) +
+                              ": the image has no up direction (give another --view, a named view or --azimuth)");
+}
+
 void validate_camera(const view::CameraOptions& c) {
-  direction("--view", c.direction);
+  if (c.direction) direction("--view", *c.direction);
   direction("--up", c.up);
   if (c.azimuth_deg) in_range("--azimuth", *c.azimuth_deg, -1e6, 1e6);
   if (c.elevation_deg) in_range("--elevation", *c.elevation_deg, -1e6, 1e6);
@@ -58,6 +90,8 @@ void validate_camera(const view::CameraOptions& c) {
   in_range("--size", c.width, 1, kMaxImageSide);
   in_range("--size", c.height, 1, kMaxImageSide);
   in_range("--margin", c.margin, 0, 0.45);
+  one_sight(c);
+  sight_not_along_up(c);
 }
 
 void validate_surface(const differential::SurfaceOptions& s) {
@@ -187,7 +221,8 @@ void validate_shadow(const stylize::ShadowOptions& s) {
 }
 
 void validate_render(const render::RenderOptions& r) {
-  positive("--pen-width", r.pen_width, 1e3);
+  if (r.pen_width) positive("--pen-width", *r.pen_width, 1e3);
+  positive("--pen-width-mm", r.pen_width_mm, 100);
   positive("render.default_width", r.default_width, 1e3);
   non_negative("render.width_step", r.width_step, 1e3);
   positive("render.hidden_width", r.hidden_width, 1e3);
@@ -195,6 +230,12 @@ void validate_render(const render::RenderOptions& r) {
   positive("render.hidden_dash", r.hidden_dash, 1e5);
   if (r.page_width_mm) positive("--page-width-mm", *r.page_width_mm, 1e5);
   in_range("render.decimals", r.decimals, 0, 6);
+}
+
+void validate_plotter(const plotter::PlotterOptions& p) {
+  non_negative("--merge-tolerance-mm", p.merge_tolerance_mm, 100);
+  non_negative("plotter.collinear_tolerance_mm", p.collinear_tolerance_mm, 100);
+  non_negative("--min-stroke-mm", p.min_stroke_mm, 1e4);
 }
 
 }  // namespace
@@ -231,6 +272,7 @@ void validate(const DrawOptions& options) {
   validate_thickness(options.thickness);
   validate_shadow(options.shadow);
   validate_render(options.render);
+  validate_plotter(options.plotter);
   validate(options, options.camera);
 }
 

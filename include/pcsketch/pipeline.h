@@ -16,6 +16,7 @@
 #include "pcsketch/differential/surface.h"
 #include "pcsketch/features/boundary_lines.h"
 #include "pcsketch/features/ridge_valley_lines.h"
+#include "pcsketch/plotter/plot_order.h"
 #include "pcsketch/render/options.h"
 #include "pcsketch/stylize/shadow.h"
 #include "pcsketch/stylize/thickness.h"
@@ -49,6 +50,7 @@ struct DrawOptions {
   /// world-fixed light often comes from behind and hatches nearly everything.
   stylize::ShadowOptions shadow{.light = {.follow_camera = true}};
   render::RenderOptions render;                ///< hidden lines, plotter mode, page size (used by the writers)
+  plotter::PlotterOptions plotter;             ///< with render.plotter: merging, sorting, dabs left out (page mm)
   LineSelection lines;                         ///< which kinds of line are drawn
   /// Clouds with fewer points than this give an empty drawing and a warning instead of an analysis: a surface
   /// needs a neighbourhood (k) per point. 3 is the least a plane needs; smaller clouds cannot be drawn.

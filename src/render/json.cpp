@@ -56,12 +56,14 @@ nlohmann::json to_json(const Drawing& d) {
   }
   nlohmann::json regions = nlohmann::json::array();
   for (const ShadeRegion& r : d.regions) regions.push_back({{"grey", tidy(r.grey)}, {"polygon", points2(r.polygon)}});
-  return {{"image", {{"width", d.width}, {"height", d.height}}},
-          {"origin", {d.origin.x(), d.origin.y(), d.origin.z()}},
-          {"camera", d.camera},
-          {"parameters", d.parameters},
-          {"polylines", std::move(polylines)},
-          {"regions", std::move(regions)}};
+  nlohmann::json j = {{"image", {{"width", d.width}, {"height", d.height}}},
+                      {"origin", {d.origin.x(), d.origin.y(), d.origin.z()}},
+                      {"camera", d.camera},
+                      {"parameters", d.parameters},
+                      {"polylines", std::move(polylines)},
+                      {"regions", std::move(regions)}};
+  if (!d.plotter.is_null()) j["plotter"] = d.plotter;
+  return j;
 }
 
 void write_json(const Drawing& drawing, const std::filesystem::path& path) {

@@ -105,7 +105,8 @@ std::string svg_string(const Drawing& d, const RenderOptions& o) {
   out += unit;
   out += "\" viewBox=\"0 0 " + std::to_string(d.width) + " " + std::to_string(d.height) + "\">\n";
   out += "  <title>pcsketch drawing</title>\n";
-  const nlohmann::json record = {{"camera", d.camera}, {"parameters", d.parameters}, {"render", o.to_json()}};
+  nlohmann::json record = {{"camera", d.camera}, {"parameters", d.parameters}, {"render", o.to_json()}};
+  if (!d.plotter.is_null()) record["plotter"] = d.plotter;
   out += "  <desc>" + xml_escaped(record.dump()) + "</desc>\n";
   out += "  <sodipodi:namedview inkscape:document-units=\"";
   out += unit;

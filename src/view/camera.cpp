@@ -1,7 +1,9 @@
 #include "pcsketch/view/camera.h"
 
+#include <array>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <utility>
 
 #include "pcsketch/core/error.h"
 
@@ -11,29 +13,57 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-Vec3d sight_direction(const CameraOptions& o) {
-  if (o.eye && o.target) return *o.target - *o.eye;
-  if (o.azimuth_deg || o.elevation_deg) {
-    const double a = o.azimuth_deg.value_or(0.0) * kPi / 180.0;
-    const double e = o.elevation_deg.value_or(0.0) * kPi / 180.0;
-    // Expressed in a frame whose y axis is `up`, so that azimuth turns around the user's up.
-    const Vec3d up = o.up.normalized();
-    Vec3d z = Vec3d::UnitZ() - up.z() * up;
-    if (z.norm() < 1e-6) z = Vec3d::UnitX() - up.x() * up;
-    z.normalize();
-    const Vec3d x = up.cross(z);
-    return -std::sin(a) * std::cos(e) * x - std::sin(e) * up + std::cos(a) * std::cos(e) * z;
-  }
-  return o.direction;
+// Each named view as (azimuth, elevation) in degrees; the isometric elevation is atan(1/√2).
+constexpr std::array<std::pair<std::string_view, std::array<double, 2>>, 7> kNamedViews{{
+    {"front", {0, 0}},
+    {"back", {180, 0}},
+    {"left", {90, 0}},
+    {"right", {-90, 0}},
+    {"top", {0, 90}},
+    {"bottom", {0, -90}},
+    {"iso", {-45, 35.26438968275465}},
+}};
+
+/// Sight and image up of the viewer at azimuth `a` around `up` and elevation `e`, degrees: in a frame whose y axis is
+/// `up`, so that azimuth turns around the user's up.
+SightFrame orbit(const Vec3d& up_hint, double azimuth_deg, double elevation_deg) {
+  const double a = azimuth_deg * kPi / 180.0, e = elevation_deg * kPi / 180.0;
+  const Vec3d up = (up_hint / up_hint.cwiseAbs().maxCoeff()).normalized();
+  Vec3d z = Vec3d::UnitZ() - up.z() * up;
+  if (z.norm() < 1e-6) z = Vec3d::UnitX() - up.x() * up;
+  z.normalize();
+  const Vec3d x = up.cross(z);
+  const Vec3d horizontal = -std::sin(a) * x + std::cos(a) * z;
+  // The image's up leans back with the elevation, so that it stays defined when looking straight down or up.
+  return {std::cos(e) * horizontal - std::sin(e) * up, std::sin(e) * horizontal + std::cos(e) * up};
 }
 
 }  // namespace
+
+std::string_view to_string(NamedView view) { return kNamedViews[static_cast<std::size_t>(view)].first; }
+
+std::optional<NamedView> parse_named_view(std::string_view name) {
+  for (std::size_t i = 0; i < kNamedViews.size(); ++i)
+    if (kNamedViews[i].first == name) return static_cast<NamedView>(i);
+  return std::nullopt;
+}
+
+SightFrame sight_frame(const CameraOptions& o) {
+  if (o.eye && o.target) return {*o.target - *o.eye, o.up};
+  if (o.named) {
+    const auto& [azimuth, elevation] = kNamedViews[static_cast<std::size_t>(*o.named)].second;
+    return orbit(o.up, azimuth, elevation);
+  }
+  if (o.azimuth_deg || o.elevation_deg) return orbit(o.up, o.azimuth_deg.value_or(0.0), o.elevation_deg.value_or(0.0));
+  return {o.direction.value_or(Vec3d::UnitZ()), o.up};
+}
 
 Camera make_camera(const std::vector<Vec3f>& positions, const Vec3d& origin, const CameraOptions& o) {
   if (o.width <= 0 || o.height <= 0) throw Error("camera: image size must be positive");
   if (o.projection == Projection::Perspective && !(o.fov_deg > 0 && o.fov_deg < 180))
     throw Error("camera: field of view must be in (0, 180) degrees");
-  const Vec3d dir = sight_direction(o);
+  const SightFrame frame = sight_frame(o);
+  const Vec3d& dir = frame.forward;
   if (!dir.allFinite() || !(dir.cwiseAbs().maxCoeff() > 1e-12))
     throw Error("camera: view direction must be a non-zero vector");
   if (o.eye && o.target && o.projection == Projection::Orthographic && (*o.eye - *o.target).norm() == 0)
@@ -46,7 +76,8 @@ Camera make_camera(const std::vector<Vec3f>& positions, const Vec3d& origin, con
   cam.origin = origin;
   // Scaled by the largest coordinate first: the norm of (1e308, 1e308, 1e308) overflows and would give a zero axis.
   const Vec3d f = (dir / dir.cwiseAbs().maxCoeff()).normalized();
-  const Vec3d up_hint = o.up.cwiseAbs().maxCoeff() > 0 ? Vec3d(o.up / o.up.cwiseAbs().maxCoeff()) : o.up;
+  const Vec3d up_hint =
+      frame.up.cwiseAbs().maxCoeff() > 0 ? Vec3d(frame.up / frame.up.cwiseAbs().maxCoeff()) : frame.up;
   Vec3d up = up_hint - up_hint.dot(f) * f;
   if (up.norm() < 1e-6 * std::max(1.0, up_hint.norm())) {
     // The up hint is parallel to the sight: take the world axis least aligned with it.

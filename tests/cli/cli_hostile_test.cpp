@@ -96,13 +96,19 @@ TEST_F(CliHostile, EveryNumericFlagWithNanInfNegativeZeroAndHuge) {
                                           "--shadow-k",
                                           "--hatch-spacing",
                                           "--pen-width",
+                                          "--pen-width-mm",
+                                          "--min-stroke-mm",
+                                          "--merge-tolerance-mm",
+                                          "--turntable",
                                           "--page-width-mm",
                                           "--max-memory",
                                           "--threads"};
   for (const std::string& flag : flags)
     for (const char* value : {"nan", "inf", "-1", "0", "1e308", "1e309"}) {
       SCOPED_TRACE(flag + " " + value);
-      const std::string extra = flag == "--pen-width" ? " --plotter" : flag == "--fov" ? " --perspective" : "";
+      const bool plotter = flag == "--pen-width" || flag == "--pen-width-mm" || flag == "--min-stroke-mm" ||
+                           flag == "--merge-tolerance-mm";
+      const std::string extra = plotter ? " --plotter" : flag == "--fov" ? " --perspective" : "";
       const CommandRun r = limited(draw(flag + " " + value + extra));
       EXPECT_TRUE(r.status == 0 || r.status == 1) << r.status << ": " << r.err;
       EXPECT_LE(lines(r.err), 1u) << r.err;

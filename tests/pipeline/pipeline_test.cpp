@@ -46,6 +46,27 @@ TEST(Pipeline, CubeSeenFromACornerHasContoursAndRidgesButNoValleys) {
   EXPECT_GT(r.timings.total(), 0.0);
 }
 
+// --plotter: the same lines, merged and sorted per layer, the pen travel recorded (plotter/plot_order.h).
+TEST(Pipeline, PlotterModeOrdersTheStrokesAndRecordsThePenTravel) {
+  DrawOptions o = small_image();
+  o.camera.direction = Vec3d(-1, -1, -1);
+  const Prepared prepared = prepare(test::cube(1.f, {.n = 12000}), o);
+  const Drawing plain = draw_view(prepared, o.camera, o).drawing;
+  o.render.plotter = true;
+  const Drawing plotted = draw_view(prepared, o.camera, o).drawing;
+  EXPECT_TRUE(plain.plotter.is_null());
+  ASSERT_FALSE(plotted.plotter.is_null());
+  const nlohmann::json& before = plotted.plotter["before_ordering"];
+  const nlohmann::json& after = plotted.plotter["after_ordering"];
+  const plotter::PlotStats stats = plotter::plot_stats(plain, render::mm_per_pixel(plain.width, o.render));
+  EXPECT_EQ(before["strokes"], stats.strokes);
+  EXPECT_DOUBLE_EQ(before["pen_up_mm"].get<double>(), stats.pen_up_mm);
+  EXPECT_LE(after["pen_up_mm"].get<double>(), before["pen_up_mm"].get<double>());
+  EXPECT_EQ(after["strokes"].get<std::size_t>(), plotted.strokes.size());
+  EXPECT_GE(count(plotted, LineKind::Ridge), 1u);
+  EXPECT_EQ(plotted.parameters["plotter"]["min_stroke_mm"], o.plotter.min_stroke_mm);
+}
+
 TEST(Pipeline, SphereHasOneClosedContourAndNoFeatureLines) {
   const DrawResult r = draw(test::sphere(1.f, {.n = 8000}), small_image());
   EXPECT_EQ(count(r.drawing, LineKind::Contour), 1u);

@@ -35,6 +35,7 @@ struct Drawing {
   Vec3d origin = Vec3d::Zero();    ///< the cloud's origin: world = origin + point
   nlohmann::json camera;           ///< Camera::to_json()
   nlohmann::json parameters;       ///< every option used, for reproducibility
+  nlohmann::json plotter;          ///< plotter paths only: pen travel before and after ordering (else null)
   std::vector<Stroke> strokes;
   std::vector<ShadeRegion> regions;
 };

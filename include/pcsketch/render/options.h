@@ -19,8 +19,12 @@ struct RenderOptions {
   /// Pen-plotter output: every stroke as its centre-line with the single width `pen_width`, black, no shade regions
   /// (a plotter draws lines; variable width and grey fills are what it cannot draw).
   bool plotter = false;
-  /// Plotter mode: line width in pixels (image units). 1 px ≈ 0.26 mm at the default page size.
-  float pen_width = 1.0f;
+  /// Plotter mode: line width in page millimetres (the page of `page_width_mm`, or CSS pixels of 1/96 in). 0.3 mm is
+  /// a fine pen.
+  double pen_width_mm = 0.3;
+  /// Plotter mode: line width in image pixels instead of `pen_width_mm` (the unit of `--pen-width` before pen widths
+  /// were millimetres; 1 px ≈ 0.26 mm on the default page).
+  std::optional<float> pen_width;
   /// Width in pixels of strokes that carry no widths (a Drawing made without the thickness stage).
   float default_width = 1.5f;
   /// Variable-width strokes are drawn as runs of equal width (round caps and joins, so runs meet seamlessly): a
@@ -43,5 +47,12 @@ struct RenderOptions {
 
   nlohmann::json to_json() const;
 };
+
+/// Page millimetres per image pixel of a drawing `image_width` pixels wide: page_width_mm / image_width, or
+/// 25.4 / 96 (a CSS pixel) when the page width is unset.
+double mm_per_pixel(int image_width, const RenderOptions& options);
+
+/// The plotter pen's width in image pixels: `pen_width` when set, else `pen_width_mm` on the page.
+float pen_width_px(int image_width, const RenderOptions& options);
 
 }  // namespace pcsketch::render

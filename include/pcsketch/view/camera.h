@@ -3,6 +3,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
+#include <string_view>
 
 #include "pcsketch/core/point_cloud.h"
 
@@ -10,15 +11,38 @@ namespace pcsketch::view {
 
 enum class Projection { Orthographic, Perspective };
 
-/// How the user describes a view. Every field has a default so that `CameraOptions{}` is the paper's view.
+/// The views of technical drawing, relative to `up` (CameraOptions::up). *front* looks horizontally along the part
+/// of +z perpendicular to up (the paper's +z view when up is y), or along +x when up is along z; *right* is seen
+/// from the front view's right-hand side, *left* from its left; *top* looks down along −up with the front's far
+/// side up in the image (third-angle plan), *bottom* up along +up; *iso* is the isometric view from front, right
+/// and above (azimuth −45°, elevation 35.26°).
+enum class NamedView { Front, Back, Left, Right, Top, Bottom, Iso };
+
+/// "front", "back", … as on the command line.
+std::string_view to_string(NamedView view);
+/// The view of that name, or nothing.
+std::optional<NamedView> parse_named_view(std::string_view name);
+
+/// The three-quarter view (azimuth −35°, elevation 15°: from the front's right, a little above) that the CLI takes
+/// when `--up` is given without a view.
+inline constexpr double kThreeQuarterAzimuthDeg = -35.0;
+inline constexpr double kThreeQuarterElevationDeg = 15.0;
+
+/// How the user describes a view. Every field has a default so that `CameraOptions{}` is the paper's view. At most
+/// one of `direction`, `named`, azimuth/elevation and eye with target sets the direction of sight (validate.h
+/// refuses two).
 struct CameraOptions {
   Projection projection = Projection::Orthographic;
-  /// Direction of sight, world units (paper: +z). Ignored when azimuth/elevation or eye/target are set.
-  Vec3d direction{0, 0, 1};
-  /// Up hint; projected to be perpendicular to the direction. If parallel to it, another axis is chosen.
+  /// Direction of sight, world units. Unset: the paper's +z (unless another field sets the sight).
+  std::optional<Vec3d> direction;
+  /// A named view relative to `up`.
+  std::optional<NamedView> named;
+  /// Up hint: the image's up is its part perpendicular to the sight. An explicit direction parallel to it is
+  /// refused by validate(); make_camera() then takes the world axis least aligned with the sight.
   Vec3d up{0, 1, 0};
   /// Alternative to `direction`: viewer's azimuth around `up` and elevation above the horizon, in degrees.
-  /// Azimuth 0, elevation 0 looks along +z; positive elevation looks down on the model.
+  /// Azimuth 0, elevation 0 is the front view (+z when up is y); positive azimuth turns toward the left view,
+  /// positive elevation looks down on the model. At ±90° elevation the image's up is the front's far side.
   std::optional<double> azimuth_deg;
   std::optional<double> elevation_deg;
   /// Perspective only: eye and target points in world coordinates. Default: the target is the box centre and the
@@ -55,6 +79,14 @@ struct Camera {
   /// Everything needed to reproduce the view, in world coordinates.
   nlohmann::json to_json() const;
 };
+
+/// The direction of sight the options describe (not normalised) and the up hint that goes with it: the options' up,
+/// or for azimuth/elevation and named views the up tilted with the elevation (defined when looking along up).
+struct SightFrame {
+  Vec3d forward;
+  Vec3d up;
+};
+SightFrame sight_frame(const CameraOptions& options);
 
 /// Builds the camera for `positions` (relative to `origin`) and frames their projection inside the image with
 /// the margin. Throws pcsketch::Error for a zero direction, a non-positive size or fov outside (0, 180).
