@@ -215,12 +215,21 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
     if (k > shared) run_wide(k);
     else run_shared(k);
   } else {
-    if (shared >= kInnerFit + 4) inner_residual.resize((n + stride - 1) / stride);
-    run_shared(shared);
-    result.noise_sigma = static_cast<float>(noise_estimate(residual, inner_residual, stride, shared));
-    if (options.adapt_to_noise && options.noise_tolerance > 0 && shared > 0) {
-      const double wanted =
-          8.0 * result.noise_sigma * std::sqrt(kPi * density(neighbourhoods)) / options.noise_tolerance;
+    const bool adapt = options.adapt_to_noise && options.noise_tolerance > 0 && shared > 0;
+    const double rho = adapt ? density(neighbourhoods) : 0;
+    const auto wanted_for = [&](double sigma) { return 8.0 * sigma * std::sqrt(kPi * rho) / options.noise_tolerance; };
+    // Where a sample of 16k fits already calls for twice the cap, the wide fit is capped whatever the full first
+    // pass would say, and it replaces every fit of that pass: skip it (a fifth of a noisy cloud's curvature time).
+    const float sampled = adapt ? estimate_noise(points, normals, neighbourhoods) : 0.f;
+    if (adapt && wanted_for(sampled) >= 2.0 * static_cast<double>(options.max_k) && options.max_k < available) {
+      result.noise_sigma = sampled;
+    } else {
+      if (shared >= kInnerFit + 4) inner_residual.resize((n + stride - 1) / stride);
+      run_shared(shared);
+      result.noise_sigma = static_cast<float>(noise_estimate(residual, inner_residual, stride, shared));
+    }
+    if (adapt) {
+      const double wanted = wanted_for(result.noise_sigma);
       const std::size_t k = std::min({static_cast<std::size_t>(std::ceil(wanted)), options.max_k, available});
       // The fit's curvature noise falls as 1/√k: under 1.25·shared (< 11% less noise) the refit is not worth it.
       if (4 * k > 5 * shared) run_wide(k);

@@ -35,6 +35,67 @@ double fit_radius(const neighbourhood::Neighbourhoods& shared, std::size_t i, st
          std::sqrt(static_cast<double>(fit) / static_cast<double>(shared.k));
 }
 
+/// The k nearest neighbours of the points of one group, from one radius query around the group instead of one k-NN
+/// query per point (a k-NN query of 512 keeps its result sorted as it goes, ~75 µs a point). The query's radius holds
+/// each point's estimated k-th distance with a margin; a point whose k-th neighbour lies beyond what the ball surely
+/// holds for it gets its own k-NN query, so the sets are exactly the k nearest: clean clouds whose fit widens (coarse
+/// mesh vertices) keep exactly the fits they had.
+class GroupNeighbours {
+ public:
+  GroupNeighbours(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& shared,
+                  const neighbourhood::KdTree& tree, std::size_t k)
+      : points_(points), shared_(shared), tree_(tree), k_(k),
+        widen_(1.25f * std::sqrt(static_cast<float>(k) / static_cast<float>(std::max<std::size_t>(shared.k, 1)))) {}
+
+  /// Gathers the ball around the group's points.
+  void gather(std::span<const std::uint32_t> group) {
+    centre_ = Vec3f::Zero();
+    for (const std::uint32_t i : group) centre_ += points_[i];
+    centre_ /= static_cast<float>(group.size());
+    float radius = 0;
+    for (const std::uint32_t i : group) radius = std::max(radius, (points_[i] - centre_).norm() + estimate(i));
+    radius_ = radius;
+    tree_.radius_unsorted(centre_, radius_, ball_);
+  }
+
+  /// The k nearest neighbours of point i of the gathered group (i excluded), in no particular order.
+  const std::vector<std::uint32_t>& of(std::size_t i) {
+    const Vec3f& p = points_[i];
+    candidates_.clear();
+    for (const std::uint32_t j : ball_)
+      if (j != i) candidates_.emplace_back((points_[j] - p).squaredNorm(), j);
+    const float sure = radius_ - (p - centre_).norm();  // the ball holds every point this close to i
+    if (candidates_.size() >= k_) {
+      std::nth_element(candidates_.begin(), candidates_.begin() + static_cast<std::ptrdiff_t>(k_ - 1),
+                       candidates_.end());
+      if (std::sqrt(candidates_[k_ - 1].first) <= sure) {
+        found_.resize(k_);
+        for (std::size_t m = 0; m < k_; ++m) found_[m] = candidates_[m].second;
+        return found_;
+      }
+    }
+    tree_.knn_of_point(i, k_, found_, distances_);
+    return found_;
+  }
+
+ private:
+  /// Estimated distance of the k-th neighbour: the shared k-th distance scaled by √(k / shared k), with a margin.
+  float estimate(std::size_t i) const {
+    return shared_.k > 0 ? widen_ * shared_.distances[i * shared_.k + shared_.k - 1] : 0.f;
+  }
+
+  const std::vector<Vec3f>& points_;
+  const neighbourhood::Neighbourhoods& shared_;
+  const neighbourhood::KdTree& tree_;
+  std::size_t k_;
+  float widen_;
+  Vec3f centre_ = Vec3f::Zero();
+  float radius_ = 0;
+  std::vector<std::uint32_t> ball_, found_;
+  std::vector<float> distances_;
+  std::vector<std::pair<float, std::uint32_t>> candidates_;
+};
+
 /// One group's fit, with per-thread buffers.
 struct GroupFitter {
   const std::vector<Vec3f>& points;
@@ -44,7 +105,8 @@ struct GroupFitter {
   const GroupFitOptions& options;
   const PointFitFn& point_fit;
   Curvature& result;
-  std::vector<std::uint32_t> ball, support;
+  GroupNeighbours near;
+  std::vector<std::uint32_t> ball;
   std::vector<Vec3d> local;
 
   /// One group: one cubic, or a fit per point where the group's quadric leaves more than the noise.
@@ -89,23 +151,15 @@ struct GroupFitter {
     normal_matrix.diagonal().array() += 1e-9 * static_cast<double>(local.size());
     const std::optional<Vec10> c = solve(normal_matrix, rhs, zz, local.size());
     if (!c) {
-      double offset = 0;  // the ball must hold every point's own support
-      for (const std::uint32_t i : group) offset = std::max(offset, (points[i].cast<double>() - centre).norm());
-      tree.radius_unsorted(centre.cast<float>(), static_cast<float>(radius + offset), ball);
-      for (const std::uint32_t i : group) fit_alone(i, radius);
+      near.gather(group);
+      for (const std::uint32_t i : group) {
+        const std::vector<std::uint32_t>& nb = near.of(i);
+        point_fit(i, nb.data(), nb.size());
+      }
       return true;
     }
     for (const std::uint32_t i : group) store(i, *c, centre, normal, u, v, scale);
     return false;
-  }
-
-  /// Point i fitted over the ball's points within `radius` of it.
-  void fit_alone(std::size_t i, double radius) {
-    support.clear();
-    const auto r2 = static_cast<float>(radius * radius);
-    for (const std::uint32_t j : ball)
-      if (j != i && (points[j] - points[i]).squaredNorm() <= r2) support.push_back(j);
-    point_fit(i, support.data(), support.size());
   }
 
   /// The group's height field: the quadric, plus the cubic terms shrunk towards 0 by how far they stand out of the
@@ -204,7 +258,8 @@ std::size_t fit_groups(const std::vector<Vec3f>& points, const std::vector<Vec3f
   const std::size_t count = groups.size();
   std::vector<char> fell_back(count, 0);
   pcsketch::detail::parallel_chunks(count, options.progress, "curvature", [&](std::size_t begin, std::size_t end) {
-    GroupFitter fitter{points, normals, shared, tree, options, point_fit, result, {}, {}, {}};
+    GroupFitter fitter{points,    normals, shared, tree, options, point_fit, result,
+                       GroupNeighbours(points, shared, tree, options.fit), {}, {}};
     for (std::size_t g = begin; g < end; ++g) fell_back[g] = fitter.run(groups.of(g));
   });
   std::size_t per_point = 0;
