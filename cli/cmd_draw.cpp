@@ -223,6 +223,11 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber)
       ->group(view_group);
+  cmd->add_option("--denoised-contour-length", o.view.contours.denoised_min_length_factor,
+                  "On a denoised cloud, interior contours shorter than this many h are left out (noise squiggles)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber)
+      ->group(view_group);
   cmd->add_flag("!--no-boundary-detection", o.boundary.enabled,
                 "No border of open scans: every point may be outline, and hole rims seen through are drawn as "
                 "contours")

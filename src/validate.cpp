@@ -161,6 +161,7 @@ void validate_view(const view::ViewOptions& v, const view::SurfaceSceneOptions& 
   non_negative("view.contours.absorb_factor", c.absorb_factor, 1e3);
   in_range("view.contours.heading_steps", static_cast<double>(c.heading_steps), 1, 1000);
   non_negative("view.contours.min_length_factor", c.min_length_factor);
+  non_negative("--denoised-contour-length", c.denoised_min_length_factor, 1e6);
   in_range("view.contours.interior_neighbours", static_cast<double>(c.interior_neighbours), 1,
            neighbourhood::kMaxNeighbours);
   positive("view.contours.interior_dedupe_factor", c.interior_dedupe_factor, 1e3);

@@ -233,7 +233,7 @@ std::vector<char> covered_by_outline(const std::vector<Vec3f>& rim, const std::v
 /// Chains the interior rim samples in 3D with the paper's rule (nearest ahead within z_max of the direction line),
 /// after dropping those the outline already covers.
 std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<Polyline>& outline, float h,
-                                     const ContourOptions& o) {
+                                     const ContourOptions& o, float min_length_factor) {
   const float dedupe = o.interior_dedupe_factor * h;
   const std::vector<char> covered = covered_by_outline(cp.rim, outline, h, dedupe);
   std::vector<Vec3f> rim;
@@ -295,7 +295,7 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
       line.points.push_back(rim[c]);
       line.point_index.push_back(rim_point[c]);
     }
-    if (chain.size() >= 3 && polyline_length(line.points, closed) >= o.min_length_factor * h)
+    if (chain.size() >= 3 && polyline_length(line.points, closed) >= min_length_factor * h)
       lines.push_back(std::move(line));
   }
   return lines;
@@ -361,6 +361,7 @@ nlohmann::json ContourOptions::to_json() const {
           {"interior_trace_radius_factor", interior_trace_radius_factor},
           {"interior_z_max_factor", interior_z_max_factor},
           {"persistence_factor", persistence_factor},
+          {"denoised_min_length_factor", denoised_min_length_factor},
           {"adaptive_spacing", adaptive_spacing}};
 }
 
@@ -548,11 +549,13 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
 }
 
 ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec3f>& positions, float spacing,
-                              const ContourOptions& options) {
+                              const ContourOptions& options, bool denoised) {
   if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("contours: the mean spacing h must be positive");
   ContourLines lines;
   lines.outline = trace_outline(points, positions, options);
-  if (options.interior) lines.interior = trace_interior(points, lines.outline, spacing, options);
+  if (options.interior)
+    lines.interior = trace_interior(points, lines.outline, spacing, options,
+                                    denoised ? options.denoised_min_length_factor : options.min_length_factor);
   return lines;
 }
 

@@ -47,7 +47,8 @@ ViewResult compute_view(const PointCloud& cloud, const differential::Surface& su
   result.timings.contour_points = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  ContourLines contours = connect_contours(result.contour_points, cloud.positions, surface.spacing, options.contours);
+  ContourLines contours = connect_contours(result.contour_points, cloud.positions, surface.spacing, options.contours,
+                                           surface.denoised);
   result.timings.contour_connection = seconds_since(start);
   result.contour_count = contours.outline.size() + contours.interior.size();
   // An open sheet seen face-on has no outline but its border (a boundary line).

@@ -77,6 +77,7 @@ TEST_F(CliHostile, EveryNumericFlagWithNanInfNegativeZeroAndHuge) {
                                           "--z-max",
                                           "--contour-radius",
                                           "--contour-persistence",
+                                          "--denoised-contour-length",
                                           "--boundary-gap",
                                           "--boundary-min-size",
                                           "--boundary-radius",
