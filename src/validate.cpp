@@ -164,6 +164,7 @@ void validate_finish(const stylize::FinishOptions& f, const stylize::FusionOptio
   non_negative("--min-stroke-length", f.min_length_px, 1e5);
   non_negative("--fusion-distance", u.distance_widths, 1e3);
   non_negative("--fusion-min-stretch", u.min_stretch_px, 1e5);
+  non_negative("fusion.max_gap_px", u.max_gap_px, 1e5);
   in_range("fusion.max_angle_deg", u.max_angle_deg, 0, 90);
 }
 

@@ -130,13 +130,15 @@ void assign(std::vector<Match>& m, const Run& r, const Match& value) {
   for (std::size_t k = 0; k < r.count; ++k) m[(r.first + k) % m.size()] = value;
 }
 
-/// Keeps only the stretches worth fusing: matched runs shorter than `min_length` px are drawn after all, and each kept
-/// run is drawn by one stroke (the one most of its vertices matched). Own runs shorter than `min_length` next to a
-/// fused run join it: a stub left over at the end of a stretch would be drawn as a tick.
-void keep_stretches(const Stroke& s, std::vector<Match>& m, float min_length) {
+/// Keeps only the stretches worth fusing: matched runs shorter than min_stretch_px are drawn after all, and each kept
+/// run is drawn by one stroke (the one most of its vertices matched). Own runs then join a fused neighbour when they
+/// are stubs (under min_stretch_px: a stub left at the end of a stretch would be drawn as a tick) or short gaps
+/// between two stretches fused into the same stroke (under max_gap_px: where two tracings hover about the fusion
+/// distance the line drawn would otherwise switch between them).
+void keep_stretches(const Stroke& s, std::vector<Match>& m, const FusionOptions& o) {
   for (const Run& r : runs_of(m, s.closed)) {
     if (m[r.first].stroke == kOwn) continue;
-    if (run_length(s, r) < min_length) {
+    if (run_length(s, r) < o.min_stretch_px) {
       assign(m, r, {});
       continue;
     }
@@ -153,9 +155,13 @@ void keep_stretches(const Stroke& s, std::vector<Match>& m, float min_length) {
   if (runs.size() < 2) return;
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const Run& r = runs[k];
-    if (m[r.first].stroke != kOwn || run_length(s, r) >= min_length) continue;
-    const Run& neighbour = k > 0 ? runs[k - 1] : runs[1];
-    assign(m, r, m[neighbour.first]);
+    if (m[r.first].stroke != kOwn) continue;
+    const bool has_before = s.closed || k > 0, has_after = s.closed || k + 1 < runs.size();
+    const Match before = has_before ? m[runs[(k + runs.size() - 1) % runs.size()].first] : Match{};
+    const Match after = has_after ? m[runs[(k + 1) % runs.size()].first] : Match{};
+    const float length = run_length(s, r);
+    const bool gap = has_before && has_after && before.stroke == after.stroke && length < o.max_gap_px;
+    if (gap || length < o.min_stretch_px) assign(m, r, has_before ? before : after);
   }
 }
 
@@ -214,6 +220,7 @@ nlohmann::json FusionOptions::to_json() const {
   return {{"enabled", enabled},
           {"distance_widths", distance_widths},
           {"min_stretch_px", min_stretch_px},
+          {"max_gap_px", max_gap_px},
           {"max_angle_deg", max_angle_deg}};
 }
 
@@ -253,7 +260,7 @@ FusionResult fuse_strokes(std::vector<Stroke> strokes, const std::vector<FusionR
     // In drawing order: a stroke's own matches are final before any later stroke looks at them.
     for (const std::uint32_t s : order) {
       drawn_by[s] = matches(strokes, s, position, drawn_by, grid, distance, cos_max);
-      keep_stretches(strokes[s], drawn_by[s], o.min_stretch_px);
+      keep_stretches(strokes[s], drawn_by[s], o);
     }
   }
 

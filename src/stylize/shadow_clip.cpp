@@ -1,6 +1,9 @@
 // Shading stays on the object: the silhouette of the view as a mask, and the clipping of hatch strokes and shade
 // blocks against it.
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,6 +19,39 @@ bool SilhouetteMask::contains(const Vec2f& p) const {
   return inside[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] != 0;
 }
 
+namespace {
+
+/// Samples over `length` px at most half a cell apart (capped: a degenerate far-away point must not hang the loop).
+int half_cell_steps(float length, const SilhouetteMask& mask) {
+  const float steps = std::ceil(2.f * length / mask.cell);
+  return steps >= 1.f ? static_cast<int>(std::min(steps, 65536.f)) : 1;  // NaN too gives 1
+}
+
+/// Keeps the cells whose every cell centre within `radius` cells is inside (outside the image counts as outside).
+void erode(SilhouetteMask& m, float radius) {
+  std::vector<std::pair<int, int>> disc;
+  const int reach = static_cast<int>(std::floor(radius));
+  for (int dy = -reach; dy <= reach; ++dy)
+    for (int dx = -reach; dx <= reach; ++dx)
+      if (static_cast<float>(dx * dx + dy * dy) <= radius * radius) disc.emplace_back(dx, dy);
+  std::vector<std::uint8_t> kept(m.inside.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<int>(0, m.h), [&](const tbb::blocked_range<int>& rows) {
+    for (int y = rows.begin(); y != rows.end(); ++y)
+      for (int x = 0; x < m.w; ++x) {
+        if (!m.inside[static_cast<std::size_t>(y) * m.w + x]) continue;
+        bool all = true;
+        for (std::size_t k = 0; k < disc.size() && all; ++k) {
+          const int xx = x + disc[k].first, yy = y + disc[k].second;
+          all = xx >= 0 && yy >= 0 && xx < m.w && yy < m.h && m.inside[static_cast<std::size_t>(yy) * m.w + xx];
+        }
+        kept[static_cast<std::size_t>(y) * m.w + x] = all;
+      }
+  });
+  m.inside = std::move(kept);
+}
+
+}  // namespace
+
 SilhouetteMask silhouette_mask(const ShadowInput& in, const ShadowOptions& o) {
   const view::Camera& cam = in.camera;
   SilhouetteMask m;
@@ -23,13 +59,16 @@ SilhouetteMask silhouette_mask(const ShadowInput& in, const ShadowOptions& o) {
   m.w = std::max(1, static_cast<int>(std::ceil(static_cast<float>(cam.width) / m.cell)));
   m.h = std::max(1, static_cast<int>(std::ceil(static_cast<float>(cam.height) / m.cell)));
   m.inside.assign(static_cast<std::size_t>(m.w) * static_cast<std::size_t>(m.h), 0);
-  // Every point as a round splat of its disc radius, whichever way it faces: the filled outline of the drawing.
-  // Serial: the writes of neighbouring splats overlap, and one pass over the points is cheap next to the shading.
+  // Every point as a round splat of its disc radius, whichever way it faces, then eroded by the typical radius (a
+  // closing): gaps between points are filled, and the discs' overhang past the outermost points is taken back, so the
+  // mask ends at the outline the contours trace. Serial: neighbouring splats write the same cells.
+  std::vector<float> radii;
   for (std::size_t i = 0; i < in.positions.size(); ++i) {
     const Vec3f uvd = cam.project(in.positions[i]);
     if (!(uvd.z() > 0.f) || !uvd.allFinite()) continue;
     const float r = o.splat_radius_factor * in.local_spacing[i] / cam.units_per_pixel(uvd.z()) / m.cell;
     if (!(r > 0.f) || !std::isfinite(r)) continue;
+    radii.push_back(r);
     const float cx = uvd.x() / m.cell, cy = uvd.y() / m.cell;
     if (cx >= 0.f && cy >= 0.f && cx < static_cast<float>(m.w) && cy < static_cast<float>(m.h))
       m.inside[static_cast<std::size_t>(cy) * m.w + static_cast<std::size_t>(cx)] = 1;  // a disc smaller than a cell
@@ -44,6 +83,9 @@ SilhouetteMask silhouette_mask(const ShadowInput& in, const ShadowOptions& o) {
         if (dx * dx + dy * dy <= r * r) m.inside[static_cast<std::size_t>(y) * m.w + x] = 1;
       }
   }
+  if (radii.empty()) return m;
+  std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2), radii.end());
+  erode(m, radii[radii.size() / 2]);
   return m;
 }
 
@@ -59,23 +101,40 @@ std::vector<Stroke> clip_stroke(const Stroke& s, const SilhouetteMask& mask) {
     points.clear();
     image.clear();
   };
+  // The stroke's own vertices are kept; where it leaves or re-enters the mask (tested every half cell) it is cut
+  // at the last and first sample inside.
+  bool was_inside = n > 0 && mask.contains(s.image_points[0]);
+  if (was_inside) {
+    points.push_back(s.points[0]);
+    image.push_back(s.image_points[0]);
+  }
   for (std::size_t k = 0; k < s.segments(); ++k) {
     const std::size_t b = (k + 1) % n;
     const Vec2f &ia = s.image_points[k], &ib = s.image_points[b];
-    const int steps = std::clamp(static_cast<int>(std::ceil(2.f * (ib - ia).norm() / mask.cell)), 1, 1 << 16);
-    for (int t = k == 0 ? 0 : 1; t <= steps; ++t) {
+    const int steps = half_cell_steps((ib - ia).norm(), mask);
+    auto at = [&](int t) {
       const float u = static_cast<float>(t) / static_cast<float>(steps);
-      const Vec2f p = ia + u * (ib - ia);
-      if (!mask.contains(p)) {
+      return std::pair<Vec3f, Vec2f>(s.points[k] + u * (s.points[b] - s.points[k]), ia + u * (ib - ia));
+    };
+    for (int t = 1; t <= steps; ++t) {
+      const auto [point, pixel] = at(t);
+      const bool inside = mask.contains(pixel);
+      if (inside && (!was_inside || t == steps)) {
+        points.push_back(point);
+        image.push_back(pixel);
+      } else if (!inside && was_inside) {
+        if (t > 1) {
+          const auto [last_point, last_pixel] = at(t - 1);
+          points.push_back(last_point);
+          image.push_back(last_pixel);
+        }
         cut = true;
         flush(false);
-        continue;
       }
-      points.push_back(s.points[k] + u * (s.points[b] - s.points[k]));
-      image.push_back(p);
+      was_inside = inside;
     }
   }
-  // A closed stroke wholly inside stays closed (its last sample is its first point again).
+  // A closed stroke wholly inside stays closed (its last point is its first again).
   if (s.closed && !cut && points.size() > 2) {
     points.pop_back();
     image.pop_back();
@@ -97,7 +156,7 @@ std::vector<std::vector<Vec2f>> clip_block(const std::vector<std::array<Vec2f, 3
   };
   // Where the way out from the line leaves the silhouette: the block is cut there.
   auto exit = [&](const Vec2f& base, const Vec2f& far) {
-    const int steps = std::clamp(static_cast<int>(std::ceil(2.f * (far - base).norm() / mask.cell)), 1, 1 << 16);
+    const int steps = half_cell_steps((far - base).norm(), mask);
     for (int t = 1; t <= steps; ++t)
       if (!mask.contains(base + (static_cast<float>(t) / static_cast<float>(steps)) * (far - base)))
         return (static_cast<float>(t) - 1.f) / static_cast<float>(steps);
@@ -107,7 +166,7 @@ std::vector<std::vector<Vec2f>> clip_block(const std::vector<std::array<Vec2f, 3
     const auto& a = cross[k];
     const auto& b = cross[k + 1];
     const float span = std::max((b[1] - a[1]).norm(), (b[2] - a[2]).norm());
-    const int steps = std::clamp(static_cast<int>(std::ceil(2.f * span / mask.cell)), 1, 1 << 16);
+    const int steps = half_cell_steps(span, mask);
     for (int t = k == 0 ? 0 : 1; t <= steps; ++t) {
       const float u = static_cast<float>(t) / static_cast<float>(steps);
       const Vec2f base = a[0] + u * (b[0] - a[0]), in = a[1] + u * (b[1] - a[1]), out_pt = a[2] + u * (b[2] - a[2]);

@@ -91,14 +91,16 @@ TEST(Fusion, EachVisibleEdgeOfANotchedBoxIsDrawnOnce) {
   expect_each_edge_drawn_once(p, {.direction = Vec3d(-0.4, 0.6, -1), .width = 512, .height = 512});
 }
 
-/// Shading pixels (region pixel centres, hatch samples every 0.25 px) farther than `slack` px from every point's disc.
+/// Shading pixels (region pixel centres, hatch samples every 0.25 px) farther than `slack` px from every point's disc
+/// of half its scene radius (the surface the points cover, without the discs' overhang past the outline).
 std::size_t shading_outside_silhouette(const Prepared& prepared, const Drawing& d, const DrawOptions& o,
                                        const view::Camera& cam, float slack) {
   const int w = d.width, h = d.height;
   std::vector<std::uint8_t> mask(static_cast<std::size_t>(w) * h, 0);
   for (std::size_t i = 0; i < prepared.cloud.size(); ++i) {
     const Vec3f uvd = cam.project(prepared.cloud.positions[i]);
-    const float r = o.shadow.splat_radius_factor * prepared.local_spacing[i] / cam.units_per_pixel(uvd.z()) + slack;
+    const float disc_px = o.shadow.splat_radius_factor * prepared.local_spacing[i] / cam.units_per_pixel(uvd.z());
+    const float r = 0.5f * disc_px + slack;
     for (int y = std::max(0, static_cast<int>(uvd.y() - r)); y <= std::min(h - 1, static_cast<int>(uvd.y() + r)); ++y)
       for (int x = std::max(0, static_cast<int>(uvd.x() - r)); x <= std::min(w - 1, static_cast<int>(uvd.x() + r)); ++x)
         if (Vec2f(static_cast<float>(x) + 0.5f - uvd.x(), static_cast<float>(y) + 0.5f - uvd.y()).norm() <= r) mask[static_cast<std::size_t>(y) * w + x] = 1;

@@ -85,6 +85,22 @@ TEST(Fuse, OnlyTheStretchAlongsideIsFusedAndThePiecesMeet) {
   EXPECT_EQ(away.half_widths.size(), 2 * away.segments());
 }
 
+TEST(Fuse, AShortGapInAStretchIsFusedToo) {
+  // Along the contour at 3 px, drifting out to 8 px for 20 px, then back: one stretch, drawn once.
+  Stroke ridge = joined(straight(LineKind::Ridge, {0, 3}, {40, 3}, 21), straight(LineKind::Ridge, {40, 3}, {45, 8}, 4));
+  ridge = joined(ridge, straight(LineKind::Ridge, {45, 8}, {60, 8}, 8));
+  ridge = joined(ridge, straight(LineKind::Ridge, {60, 8}, {65, 3}, 4));
+  ridge = joined(ridge, straight(LineKind::Ridge, {65, 3}, {100, 3}, 18));
+  std::vector<Stroke> in = {straight(LineKind::Contour, {0, 0}, {100, 0}, 51), ridge};
+  const FusionResult r = fuse_strokes(in, {FusionRank::Outline, FusionRank::Feature}, kPen);
+  ASSERT_EQ(r.strokes.size(), 2u);
+  EXPECT_TRUE(r.strokes[1].fused_into.has_value());
+  // With gaps not bridged, the part 8 px away is drawn on its own.
+  const FusionResult apart =
+      fuse_strokes(in, {FusionRank::Outline, FusionRank::Feature}, kPen, {.max_gap_px = 0.f});
+  EXPECT_EQ(apart.strokes.size(), 4u);
+}
+
 TEST(Fuse, CrossingAndDistantLinesStay) {
   std::vector<Stroke> in = {straight(LineKind::Contour, {0, 0}, {100, 0}, 51),
                             straight(LineKind::Ridge, {50, -50}, {50, 50}, 51),    // crosses

@@ -21,6 +21,9 @@ struct FusionOptions {
   /// A stretch is fused only when it is at least this long along the stroke not drawn, px. 10 px (about three pen
   /// widths): lines that cross or merely touch stay, only lines that run alongside each other are drawn once.
   float min_stretch_px = 10.f;
+  /// A gap shorter than this (px) between two stretches fused into the same stroke is fused too: two tracings of one
+  /// rim hover about the fusion distance, and the line drawn would otherwise switch between them. 30 px = 3 stretches.
+  float max_gap_px = 30.f;
   /// Largest angle between the two strokes' directions along a stretch, degrees (undirected): crossing lines are
   /// two lines even where they are close.
   float max_angle_deg = 30.f;
