@@ -4,6 +4,7 @@
 // tests/support/mesh_ground_truth.h). Speed and quality read together: seconds of prepare() and of a view, peak RSS.
 //
 //   bench_scans [-n N] [--models a,b] [--conditions clean,0.1%,...] [--views K] [--boundary on|off]
+//               [--fusion on|off] [--smooth on|off] [--min-stroke-length PX]
 //
 // Each (model, condition) runs in its own process. "total" = prepare + the first view (no reading, no writing).
 
@@ -120,6 +121,9 @@ int run(int argc, char** argv) {
     else if (flag == "--views") views = std::min<std::size_t>(std::stoul(value), std::size(kViews));
     else if (flag == "--models") models = split(value);
     else if (flag == "--boundary") options.boundary.enabled = value != "off";
+    else if (flag == "--fusion") options.fusion.enabled = value != "off";
+    else if (flag == "--smooth") options.finish.smooth = value != "off";
+    else if (flag == "--min-stroke-length") options.finish.min_length_px = std::stof(value);
     else if (flag == "--conditions") {
       conditions.clear();
       for (const std::string& name : split(value))

@@ -61,9 +61,34 @@ Polyline smooth_line(const Polyline& line, const view::Camera& camera, const Fin
 }
 
 std::size_t drop_short_strokes(StrokesResult& strokes, const FinishOptions& o) {
+  // Measured per line, not per run: a long line whose visibility flickers keeps its short visible runs (they are
+  // where the line is seen), a line seen only over a few pixels goes.
+  const std::vector<Stroke>& all = strokes.strokes;
+  std::vector<float> visible_length;
+  for (std::size_t s = 0; s < all.size(); ++s) {
+    if (strokes.line[s] >= visible_length.size()) visible_length.resize(strokes.line[s] + 1, 0.f);
+    if (all[s].visible) visible_length[strokes.line[s]] += all[s].image_length();
+  }
+  auto is_short = [&](std::size_t s) { return all[s].visible && visible_length[strokes.line[s]] < o.min_length_px; };
+  // A short piece that starts or ends within its own length of the end of a longer line reads as that line's
+  // continuation (a contour broken where it was traced in two parts), not as a dab: it stays, joined to it.
+  std::vector<Vec2f> long_ends;
+  for (std::size_t s = 0; s < all.size(); ++s)
+    if (all[s].visible && !is_short(s) && !all[s].image_points.empty()) {
+      long_ends.push_back(all[s].image_points.front());
+      long_ends.push_back(all[s].image_points.back());
+    }
+  auto continues_a_line = [&](const Stroke& st) {
+    for (const Vec2f& end : {st.image_points.front(), st.image_points.back()})
+      for (const Vec2f& other : long_ends)
+        if ((end - other).norm() <= o.min_length_px) return true;
+    return false;
+  };
+  std::vector<std::uint8_t> drop(all.size(), 0);
+  for (std::size_t s = 0; s < all.size(); ++s) drop[s] = is_short(s) && !continues_a_line(all[s]);
   std::size_t kept = 0;
-  for (std::size_t s = 0; s < strokes.strokes.size(); ++s) {
-    if (strokes.strokes[s].visible && strokes.strokes[s].image_length() < o.min_length_px) continue;
+  for (std::size_t s = 0; s < all.size(); ++s) {
+    if (drop[s]) continue;
     if (kept != s) {
       strokes.strokes[kept] = std::move(strokes.strokes[s]);
       strokes.line[kept] = strokes.line[s];

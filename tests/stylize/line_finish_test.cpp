@@ -64,22 +64,26 @@ TEST(LineFinish, SmoothingOffLeavesTheLine) {
   EXPECT_EQ(same.points, l.points);
 }
 
-TEST(LineFinish, ShortVisibleStrokesAreLeftOut) {
-  auto stroke = [](float length, bool visible) {
+TEST(LineFinish, LinesSeenOverAFewPixelsAreLeftOut) {
+  // Each stroke along x from (x0, y), on rows 20 px apart so that no two meet unless asked to.
+  auto stroke = [](float x0, float y, float length, bool visible) {
     Stroke s;
     s.visible = visible;
-    s.points = {{0, 0, 0}, {length, 0, 0}};
-    s.image_points = {{0, 0}, {length, 0}};
+    s.points = {{x0, y, 0}, {x0 + length, y, 0}};
+    s.image_points = {{x0, y}, {x0 + length, y}};
     s.widths = {1, 1};
     s.half_widths = {1, 1};
     return s;
   };
   StrokesResult r;
-  r.strokes = {stroke(2, true), stroke(2, false), stroke(50, true), stroke(4.9f, true)};
-  r.line = {0, 1, 2, 3};
+  // Line 0 seen over 2 px, line 1 hidden, line 2 over 50 px, line 3 over 4.9 px, line 4 over two runs of 3 px,
+  // line 5 over 3 px starting 2 px past the end of line 2 (its continuation).
+  r.strokes = {stroke(0, 0, 2, true),  stroke(0, 20, 2, false), stroke(0, 40, 50, true), stroke(0, 60, 4.9f, true),
+               stroke(0, 80, 3, true), stroke(3, 80, 40, false), stroke(43, 80, 3, true), stroke(52, 40, 3, true)};
+  r.line = {0, 1, 2, 3, 4, 4, 4, 5};
   EXPECT_EQ(drop_short_strokes(r), 2u);  // default 5 px
-  ASSERT_EQ(r.strokes.size(), 2u);
-  EXPECT_EQ(r.line, (std::vector<std::uint32_t>{1, 2}));
+  ASSERT_EQ(r.strokes.size(), 6u);
+  EXPECT_EQ(r.line, (std::vector<std::uint32_t>{1, 2, 4, 4, 4, 5}));
   EXPECT_FALSE(r.strokes[0].visible);
 }
 

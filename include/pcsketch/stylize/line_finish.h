@@ -22,8 +22,8 @@ struct FinishOptions {
   /// fandisk's corners (about 90°–120° in the image) stay, a staircase (nearly straight at that scale) is smoothed.
   float corner_angle_deg = 135.f;
   float corner_arm_px = 8.f;  ///< arm of the corner test, px (about three pen widths)
-  /// Visible strokes shorter than this are left out, px: a pen only dabs on them (1 mm is about 5 px at 1024 px on a
-  /// 200 mm page). Hidden runs and hatching are kept as they are.
+  /// Lines seen over less than this (the image length of their visible runs together) are left out, px: a pen only
+  /// dabs on them (1 mm is about 5 px at 1024 px on a 200 mm page). Hidden runs and hatching are kept as they are.
   float min_length_px = 5.f;
   nlohmann::json to_json() const;
 };
@@ -33,7 +33,9 @@ struct FinishOptions {
 /// Corners are found in the image of `camera`, so the drawing keeps the corners it shows.
 Polyline smooth_line(const Polyline& line, const view::Camera& camera, const FinishOptions& options = {});
 
-/// Leaves out the visible strokes shorter than `options.min_length_px` (image length), with their `line` entries.
+/// Leaves out the visible strokes of every line whose visible strokes are shorter than `options.min_length_px`
+/// together (image length), with their `line` entries, unless they start or end within that length of the end of a
+/// longer line's visible stroke (they continue it, as if joined to it).
 /// @return how many strokes were left out.
 std::size_t drop_short_strokes(StrokesResult& strokes, const FinishOptions& options = {});
 
