@@ -162,6 +162,7 @@ void validate_finish(const stylize::FinishOptions& f, const stylize::FusionOptio
   in_range("finish.corner_angle_deg", f.corner_angle_deg, 0, 180);
   non_negative("finish.corner_arm_px", f.corner_arm_px, 1e5);
   non_negative("--min-stroke-length", f.min_length_px, 1e5);
+  non_negative("finish.join_px", f.join_px, 1e5);
   non_negative("--fusion-distance", u.distance_widths, 1e3);
   non_negative("--fusion-min-stretch", u.min_stretch_px, 1e5);
   non_negative("fusion.max_gap_px", u.max_gap_px, 1e5);

@@ -35,7 +35,8 @@ nlohmann::json FinishOptions::to_json() const {
           {"smooth_passes", smooth_passes},
           {"corner_angle_deg", corner_angle_deg},
           {"corner_arm_px", corner_arm_px},
-          {"min_length_px", min_length_px}};
+          {"min_length_px", min_length_px},
+          {"join_px", join_px}};
 }
 
 Polyline smooth_line(const Polyline& line, const view::Camera& camera, const FinishOptions& o) {
@@ -70,8 +71,8 @@ std::size_t drop_short_strokes(StrokesResult& strokes, const FinishOptions& o) {
     if (all[s].visible) visible_length[strokes.line[s]] += all[s].image_length();
   }
   auto is_short = [&](std::size_t s) { return all[s].visible && visible_length[strokes.line[s]] < o.min_length_px; };
-  // A short piece that starts or ends within its own length of the end of a longer line reads as that line's
-  // continuation (a contour broken where it was traced in two parts), not as a dab: it stays, joined to it.
+  // A short piece that starts or ends within join_px of the end of a longer line reads as that line's continuation
+  // (a contour broken where it was traced in two parts), not as a dab: it stays, joined to it.
   std::vector<Vec2f> long_ends;
   for (std::size_t s = 0; s < all.size(); ++s)
     if (all[s].visible && !is_short(s) && !all[s].image_points.empty()) {
@@ -81,7 +82,7 @@ std::size_t drop_short_strokes(StrokesResult& strokes, const FinishOptions& o) {
   auto continues_a_line = [&](const Stroke& st) {
     for (const Vec2f& end : {st.image_points.front(), st.image_points.back()})
       for (const Vec2f& other : long_ends)
-        if ((end - other).norm() <= o.min_length_px) return true;
+        if ((end - other).norm() <= o.join_px) return true;
     return false;
   };
   std::vector<std::uint8_t> drop(all.size(), 0);

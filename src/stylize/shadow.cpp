@@ -75,6 +75,30 @@ std::vector<Chain> chains(std::size_t n, bool closed, SegmentOk ok) {
   return out;
 }
 
+/// The block of chain `c` between hatch lines j − 1 and j (`corner(i, k)`: the image of vertex i's point on hatch
+/// line k, line 0 being the feature line), appended to `out`.
+template <class Corner>
+void add_block(const Chain& c, std::size_t j, Corner corner, float grey, const detail::SilhouetteMask* mask,
+               std::vector<ShadeRegion>& out) {
+  if (mask) {
+    // Linear between vertices, a block could cross a gap in the silhouette: it is cut at half-cell samples.
+    std::vector<std::array<Vec2f, 3>> cross;
+    for (std::size_t i : c.vertices) cross.push_back({corner(i, 0), corner(i, j - 1), corner(i, j)});
+    if (c.closed) cross.push_back(cross.front());
+    for (std::vector<Vec2f>& polygon : detail::clip_block(cross, *mask)) out.push_back({std::move(polygon), grey});
+    return;
+  }
+  // Inner boundary forward, outer boundary back: one polygon per block (a closed chain is an annulus with a
+  // zero-width seam, which fills correctly).
+  ShadeRegion r;
+  r.grey = grey;
+  for (std::size_t i : c.vertices) r.polygon.push_back(corner(i, j - 1));
+  if (c.closed) r.polygon.push_back(corner(c.vertices.front(), j - 1));
+  if (c.closed) r.polygon.push_back(corner(c.vertices.front(), j));
+  for (auto it = c.vertices.rbegin(); it != c.vertices.rend(); ++it) r.polygon.push_back(corner(*it, j));
+  out.push_back(std::move(r));
+}
+
 /// The paper's cast shadow of one line: hatch strokes per k and graded blocks.
 struct LineShadow {
   std::vector<Stroke> strokes;
@@ -156,24 +180,7 @@ LineShadow line_shadow(const ShadowInput& in, const Polyline& line, const std::v
            const std::size_t b = (s + 1) % n;
            return ok(s, j - 1) && ok(b, j - 1) && ok(s, j) && ok(b, j) && !jump(s);
          })) {
-      if (mask) {
-        // Linear between vertices, a block could cross a gap in the silhouette: it is cut at half-cell samples.
-        std::vector<std::array<Vec2f, 3>> cross;
-        for (std::size_t i : c.vertices) cross.push_back({image(point(i, 0)), image(point(i, j - 1)), image(point(i, j))});
-        if (c.closed) cross.push_back(cross.front());
-        for (std::vector<Vec2f>& polygon : detail::clip_block(cross, *mask))
-          out.regions.push_back({std::move(polygon), grey});
-        continue;
-      }
-      // Inner boundary forward, outer boundary back: one polygon per block (a closed chain is an annulus with a
-      // zero-width seam, which fills correctly).
-      ShadeRegion r;
-      r.grey = grey;
-      for (std::size_t i : c.vertices) r.polygon.push_back(image(point(i, j - 1)));
-      if (c.closed) r.polygon.push_back(image(point(c.vertices.front(), j - 1)));
-      if (c.closed) r.polygon.push_back(image(point(c.vertices.front(), j)));
-      for (auto it = c.vertices.rbegin(); it != c.vertices.rend(); ++it) r.polygon.push_back(image(point(*it, j)));
-      out.regions.push_back(std::move(r));
+      add_block(c, j, [&](std::size_t i, std::size_t k) { return image(point(i, k)); }, grey, mask, out.regions);
     }
   }
   return out;

@@ -25,6 +25,9 @@ struct FinishOptions {
   /// Lines seen over less than this (the image length of their visible runs together) are left out, px: a pen only
   /// dabs on them (1 mm is about 5 px at 1024 px on a 200 mm page). Hidden runs and hatching are kept as they are.
   float min_length_px = 5.f;
+  /// A line shorter than that stays when one of its ends lies within this distance (px) of the end of a longer line:
+  /// it continues that line (a contour traced in two parts) rather than standing alone as a dab.
+  float join_px = 10.f;
   nlohmann::json to_json() const;
 };
 
@@ -34,8 +37,8 @@ struct FinishOptions {
 Polyline smooth_line(const Polyline& line, const view::Camera& camera, const FinishOptions& options = {});
 
 /// Leaves out the visible strokes of every line whose visible strokes are shorter than `options.min_length_px`
-/// together (image length), with their `line` entries, unless they start or end within that length of the end of a
-/// longer line's visible stroke (they continue it, as if joined to it).
+/// together (image length), with their `line` entries, unless they start or end within `options.join_px` of the end
+/// of a longer line's visible stroke (they continue it, as if joined to it).
 /// @return how many strokes were left out.
 std::size_t drop_short_strokes(StrokesResult& strokes, const FinishOptions& options = {});
 
