@@ -59,9 +59,11 @@ SilhouetteMask silhouette_mask(const ShadowInput& in, const ShadowOptions& o) {
   m.w = std::max(1, static_cast<int>(std::ceil(static_cast<float>(cam.width) / m.cell)));
   m.h = std::max(1, static_cast<int>(std::ceil(static_cast<float>(cam.height) / m.cell)));
   m.inside.assign(static_cast<std::size_t>(m.w) * static_cast<std::size_t>(m.h), 0);
-  // Every point as a round splat of its disc radius, whichever way it faces, then eroded by the typical radius (a
-  // closing): gaps between points are filled, and the discs' overhang past the outermost points is taken back, so the
-  // mask ends at the outline the contours trace. Serial: neighbouring splats write the same cells.
+  // Every point as a round splat of its disc radius, whichever way it faces, then eroded (a closing): gaps between
+  // points are filled, and the discs' overhang past the outermost points is taken back, so the mask ends at the
+  // outline the contours trace. The erosion takes the 90th percentile of the radii: with the median, the larger discs
+  // of a cloud's sparse parts kept part of their overhang (the fandisk's vertices: 120 shading pixels over 1.5 px past
+  // its mesh, 19 with the 90th percentile). Serial: neighbouring splats write the same cells.
   std::vector<float> radii;
   for (std::size_t i = 0; i < in.positions.size(); ++i) {
     const Vec3f uvd = cam.project(in.positions[i]);
@@ -84,8 +86,9 @@ SilhouetteMask silhouette_mask(const ShadowInput& in, const ShadowOptions& o) {
       }
   }
   if (radii.empty()) return m;
-  std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(radii.size() / 2), radii.end());
-  erode(m, radii[radii.size() / 2]);
+  const std::size_t high = radii.size() * 9 / 10;
+  std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(high), radii.end());
+  erode(m, radii[high]);
   return m;
 }
 
