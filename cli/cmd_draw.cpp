@@ -332,7 +332,7 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
       ->capture_default_str()->check(CLI::NonNegativeNumber)->group(finish);
   cmd->add_flag("!--no-smooth", o.finish.smooth, "Keep the traced vertices; by default lines are smoothed, corners kept")
       ->group(finish);
-  cmd->add_option("--min-stroke-length", o.finish.min_length_px, "Visible strokes shorter than this are left out, pixels")
+  cmd->add_option("--min-stroke-length", o.finish.min_length_px, "Lines seen over less than this are left out (a stub continuing a longer line stays), pixels")
       ->capture_default_str()->check(CLI::NonNegativeNumber)->group(finish);
 
   // Shadow region (paper §VI).

@@ -71,6 +71,8 @@ void expect_each_edge_drawn_once(const Prepared& prepared, const view::CameraOpt
   // Without fusion the rims are drawn twice (outline and ridge); with it, only where lines meet at corners.
   EXPECT_GT(doubled_fraction(before, distance), 0.2);
   EXPECT_LT(doubled_fraction(after, distance), 0.03);
+  EXPECT_EQ(after.parameters["fusion"]["distance_widths"], o.fusion.distance_widths);  // recorded for reproduction
+  EXPECT_EQ(after.parameters["finish"]["min_length_px"], o.finish.min_length_px);
   bool targets_drawn = false;
   EXPECT_GE(fused_in_json(after, targets_drawn), 3u);
   EXPECT_TRUE(targets_drawn);
