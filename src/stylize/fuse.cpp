@@ -186,9 +186,9 @@ Stroke slice(const Stroke& s, std::size_t first, std::size_t count) {
 }
 
 /// For each vertex of stroke `s`, the drawn segment of an earlier stroke (in `position` order) it runs along.
-std::vector<Match> matches(const std::vector<Stroke>& strokes, std::uint32_t s, const std::vector<std::uint32_t>& position,
-                           const std::vector<std::vector<Match>>& drawn_by, const SegmentGrid& grid, float distance,
-                           float cos_max) {
+std::vector<Match> matches(const std::vector<Stroke>& strokes, std::uint32_t s,
+                           const std::vector<std::uint32_t>& position, const std::vector<std::vector<Match>>& drawn_by,
+                           const SegmentGrid& grid, float distance, float cos_max) {
   const Stroke& stroke = strokes[s];
   std::vector<Match> m(stroke.image_points.size());
   for (std::size_t i = 0; i < m.size(); ++i) {

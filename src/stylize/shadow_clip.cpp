@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 
 #include "stylize/shadow_detail.h"
@@ -27,26 +28,25 @@ int half_cell_steps(float length, const SilhouetteMask& mask) {
   return steps >= 1.f ? static_cast<int>(std::min(steps, 65536.f)) : 1;  // NaN too gives 1
 }
 
-/// Keeps the cells whose every cell centre within `radius` cells is inside (outside the image counts as outside).
+/// Keeps the cells with no outside cell (or image border) within `radius` cells. The outside cell nearest to an
+/// inside one always touches an inside cell, so only those are stamped: the cost goes with the outline's length,
+/// not the object's area.
 void erode(SilhouetteMask& m, float radius) {
   std::vector<std::pair<int, int>> disc;
   const int reach = static_cast<int>(std::floor(radius));
   for (int dy = -reach; dy <= reach; ++dy)
     for (int dx = -reach; dx <= reach; ++dx)
       if (static_cast<float>(dx * dx + dy * dy) <= radius * radius) disc.emplace_back(dx, dy);
-  std::vector<std::uint8_t> kept(m.inside.size(), 0);
-  tbb::parallel_for(tbb::blocked_range<int>(0, m.h), [&](const tbb::blocked_range<int>& rows) {
-    for (int y = rows.begin(); y != rows.end(); ++y)
-      for (int x = 0; x < m.w; ++x) {
-        if (!m.inside[static_cast<std::size_t>(y) * m.w + x]) continue;
-        bool all = true;
-        for (std::size_t k = 0; k < disc.size() && all; ++k) {
-          const int xx = x + disc[k].first, yy = y + disc[k].second;
-          all = xx >= 0 && yy >= 0 && xx < m.w && yy < m.h && m.inside[static_cast<std::size_t>(yy) * m.w + xx];
-        }
-        kept[static_cast<std::size_t>(y) * m.w + x] = all;
-      }
-  });
+  auto inside = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < m.w && y < m.h && m.inside[static_cast<std::size_t>(y) * m.w + x];
+  };
+  std::vector<std::uint8_t> kept = m.inside;
+  for (int y = -1; y <= m.h; ++y)
+    for (int x = -1; x <= m.w; ++x) {
+      if (inside(x, y) || !(inside(x - 1, y) || inside(x + 1, y) || inside(x, y - 1) || inside(x, y + 1))) continue;
+      for (const auto& [dx, dy] : disc)
+        if (inside(x + dx, y + dy)) kept[static_cast<std::size_t>(y + dy) * m.w + x + dx] = 0;
+    }
   m.inside = std::move(kept);
 }
 
@@ -63,28 +63,37 @@ SilhouetteMask silhouette_mask(const ShadowInput& in, const ShadowOptions& o) {
   // points are filled, and the discs' overhang past the outermost points is taken back, so the mask ends at the
   // outline the contours trace. The erosion takes the 90th percentile of the radii: with the median, the larger discs
   // of a cloud's sparse parts kept part of their overhang (the fandisk's vertices: 120 shading pixels over 1.5 px past
-  // its mesh, 19 with the 90th percentile). Serial: neighbouring splats write the same cells.
-  std::vector<float> radii;
-  for (std::size_t i = 0; i < in.positions.size(); ++i) {
-    const Vec3f uvd = cam.project(in.positions[i]);
-    if (!(uvd.z() > 0.f) || !uvd.allFinite()) continue;
-    const float r = o.splat_radius_factor * in.local_spacing[i] / cam.units_per_pixel(uvd.z()) / m.cell;
-    if (!(r > 0.f) || !std::isfinite(r)) continue;
-    radii.push_back(r);
-    const float cx = uvd.x() / m.cell, cy = uvd.y() / m.cell;
-    if (cx >= 0.f && cy >= 0.f && cx < static_cast<float>(m.w) && cy < static_cast<float>(m.h))
-      m.inside[static_cast<std::size_t>(cy) * m.w + static_cast<std::size_t>(cx)] = 1;  // a disc smaller than a cell
-    const int y0 = std::max(0, static_cast<int>(std::floor(std::max(cy - r, -1.f))));
-    const int y1 = std::min(m.h - 1, static_cast<int>(std::floor(std::min(cy + r, static_cast<float>(m.h)))));
-    const int x0 = std::max(0, static_cast<int>(std::floor(std::max(cx - r, -1.f))));
-    const int x1 = std::min(m.w - 1, static_cast<int>(std::floor(std::min(cx + r, static_cast<float>(m.w)))));
-    // A cell is in when its centre lies on the disc: the mask then reaches at most half a cell's diagonal past it.
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        const float dx = static_cast<float>(x) + 0.5f - cx, dy = static_cast<float>(y) + 0.5f - cy;
-        if (dx * dx + dy * dy <= r * r) m.inside[static_cast<std::size_t>(y) * m.w + x] = 1;
-      }
-  }
+  // its mesh, 19 with the 90th percentile). In parallel: splats only ever set cells, so the mask is the same for any
+  // thread count (relaxed atomic stores, since neighbouring splats write the same cells).
+  std::vector<float> radii(in.positions.size(), 0.f);
+  const tbb::blocked_range<std::size_t> points(0, in.positions.size());
+  tbb::parallel_for(points, [&](const tbb::blocked_range<std::size_t>& range) {
+    auto set = [&](int x, int y) {
+      std::atomic_ref<std::uint8_t> cell(m.inside[static_cast<std::size_t>(y) * m.w + x]);
+      cell.store(1, std::memory_order_relaxed);
+    };
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const Vec3f uvd = cam.project(in.positions[i]);
+      if (!(uvd.z() > 0.f) || !uvd.allFinite()) continue;
+      const float r = o.splat_radius_factor * in.local_spacing[i] / cam.units_per_pixel(uvd.z()) / m.cell;
+      if (!(r > 0.f) || !std::isfinite(r)) continue;
+      radii[i] = r;
+      const float cx = uvd.x() / m.cell, cy = uvd.y() / m.cell;
+      if (cx >= 0.f && cy >= 0.f && cx < static_cast<float>(m.w) && cy < static_cast<float>(m.h))
+        set(static_cast<int>(cx), static_cast<int>(cy));  // a disc smaller than a cell
+      const int y0 = std::max(0, static_cast<int>(std::floor(std::max(cy - r, -1.f))));
+      const int y1 = std::min(m.h - 1, static_cast<int>(std::floor(std::min(cy + r, static_cast<float>(m.h)))));
+      const int x0 = std::max(0, static_cast<int>(std::floor(std::max(cx - r, -1.f))));
+      const int x1 = std::min(m.w - 1, static_cast<int>(std::floor(std::min(cx + r, static_cast<float>(m.w)))));
+      // A cell is in when its centre lies on the disc: the mask then reaches at most half a cell's diagonal past it.
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const float dx = static_cast<float>(x) + 0.5f - cx, dy = static_cast<float>(y) + 0.5f - cy;
+          if (dx * dx + dy * dy <= r * r) set(x, y);
+        }
+    }
+  });
+  std::erase(radii, 0.f);
   if (radii.empty()) return m;
   const std::size_t high = radii.size() * 9 / 10;
   std::nth_element(radii.begin(), radii.begin() + static_cast<std::ptrdiff_t>(high), radii.end());

@@ -20,7 +20,8 @@ TEST(LineFinish, SmoothingKeepsASquaresCorners) {
   const Vec3f corners[] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
   for (int side = 0; side < 4; ++side)
     for (int k = 0; k < 40; ++k)
-      square.points.push_back(corners[side] + (corners[(side + 1) % 4] - corners[side]) * (static_cast<float>(k) / 40.f));
+      square.points.push_back(corners[side] +
+                              (corners[(side + 1) % 4] - corners[side]) * (static_cast<float>(k) / 40.f));
   const Polyline smooth = smooth_line(square, camera_for(square.points));
   ASSERT_EQ(smooth.size(), square.size());
   for (int side = 0; side < 4; ++side) EXPECT_TRUE(smooth.points[40 * side].isApprox(corners[side]));
