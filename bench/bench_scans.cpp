@@ -4,6 +4,10 @@
 // tests/support/mesh_ground_truth.h). Speed and quality read together: seconds of prepare() and of a view, peak RSS.
 //
 //   bench_scans [-n N] [--models a,b] [--conditions clean,0.1%,...] [--views K] [--boundary on|off]
+//               [--fusion on|off] [--smooth on|off] [--min-stroke-length PX] [--score all|drawn]
+//
+// --score drawn leaves out the strokes fused into another line (not painted); by default every visible stroke is
+// scored as the kind it was traced as.
 //
 // Each (model, condition) runs in its own process. "total" = prepare + the first view (no reading, no writing).
 
@@ -42,14 +46,17 @@ constexpr float kSharpDegrees = 40.f;
 constexpr float kTolerancePx = 3.f;
 
 
-nlohmann::json score(const Drawing& drawing, LineKind kind, const std::vector<Vec2f>& truth) {
+/// Scores the visible strokes of `kind`; with `drawn_only`, the copies fused into another line (not painted) are left
+/// out, so a ridge drawn as the contour along it counts for the contour only.
+nlohmann::json score(Drawing drawing, LineKind kind, const std::vector<Vec2f>& truth, bool drawn_only) {
   if (truth.empty()) return nullptr;
+  if (drawn_only) std::erase_if(drawing.strokes, [](const Stroke& s) { return s.fused_into.has_value(); });
   const test::LineMatch m = test::match_lines(test::sample_visible_strokes(drawing, kind), truth, kTolerancePx);
   return {m.precision, m.recall};
 }
 
 std::string measure(const std::string& model, const Condition& c, std::size_t n, std::size_t views,
-                    const DrawOptions& options) {
+                    const DrawOptions& options, bool drawn_only) {
   const Mesh mesh = io::read_mesh(shared_data(model + ".off"));
   PointCloud cloud = io::sample_mesh(mesh, {.n = n,
                                             .noise_sigma_factor = c.noise,
@@ -72,9 +79,10 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
     if (v == 0) view_seconds = clock.seconds();
     const view::Camera cam = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera);
     const test::MeshSharpEdges sharp = test::mesh_sharp_edges(mesh, cam, kSharpDegrees);
-    per_view.push_back({{"contour", score(result.drawing, LineKind::Contour, test::mesh_contours(mesh, cam).visible)},
-                        {"ridge", score(result.drawing, LineKind::Ridge, sharp.convex.visible)},
-                        {"valley", score(result.drawing, LineKind::Valley, sharp.concave.visible)}});
+    const Drawing& d = result.drawing;
+    per_view.push_back({{"contour", score(d, LineKind::Contour, test::mesh_contours(mesh, cam).visible, drawn_only)},
+                        {"ridge", score(d, LineKind::Ridge, sharp.convex.visible, drawn_only)},
+                        {"valley", score(d, LineKind::Valley, sharp.concave.visible, drawn_only)}});
   }
   // Outliers left in the analysed cloud, and surface points removed with them.
   std::size_t kept_outliers = 0;
@@ -114,12 +122,17 @@ int run(int argc, char** argv) {
   std::vector<std::string> models = {"bunny", "camel", "fandisk", "elephant"};
   std::vector<Condition> conditions(std::begin(kConditions), std::end(kConditions));
   DrawOptions options;
+  bool drawn_only = false;
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string flag = argv[a], value = argv[a + 1];
     if (flag == "-n") n = std::stoul(value);
     else if (flag == "--views") views = std::min<std::size_t>(std::stoul(value), std::size(kViews));
     else if (flag == "--models") models = split(value);
     else if (flag == "--boundary") options.boundary.enabled = value != "off";
+    else if (flag == "--fusion") options.fusion.enabled = value != "off";
+    else if (flag == "--score") drawn_only = value == "drawn";
+    else if (flag == "--smooth") options.finish.smooth = value != "off";
+    else if (flag == "--min-stroke-length") options.finish.min_length_px = std::stof(value);
     else if (flag == "--conditions") {
       conditions.clear();
       for (const std::string& name : split(value))
@@ -134,7 +147,7 @@ int run(int argc, char** argv) {
   for (const std::string& model : models)
     for (const Condition& c : conditions) {
       const nlohmann::json r =
-          nlohmann::json::parse(run_isolated([&] { return measure(model, c, n, views, options); }));
+          nlohmann::json::parse(run_isolated([&] { return measure(model, c, n, views, options, drawn_only); }));
       const double total = r["prepare"].get<double>() + r["view"].get<double>();
       const auto& v = r["views"];
       table.add_row({model, c.name, grouped(r["kept"].get<std::size_t>()),

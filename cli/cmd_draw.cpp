@@ -289,6 +289,23 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
       ->group(thick);
   cmd->add_flag("!--no-brush", o.thickness.brush, "No brush taper at the ends of lines")->group(thick);
 
+  // Line finish and fusion (paper Fig. 2(d)).
+  const std::string finish = "Line finish and fusion (paper Fig. 2(d))";
+  cmd->add_flag("!--no-fusion", o.fusion.enabled,
+                "Draw every line as traced; by default lines running alongside each other are drawn once (contour "
+                "over ridge/valley, outline over interior contour), the other kept in the JSON as fused_into")
+      ->group(finish);
+  cmd->add_option("--fusion-distance", o.fusion.distance_widths,
+                  "Lines closer than this are one, in pen widths (rho-max * cofi)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(finish);
+  cmd->add_option("--fusion-min-stretch", o.fusion.min_stretch_px,
+                  "Shortest stretch of two lines running together that is drawn once, pixels")
+      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(finish);
+  cmd->add_flag("!--no-smooth", o.finish.smooth, "Keep the traced vertices; by default lines are smoothed, corners kept")
+      ->group(finish);
+  cmd->add_option("--min-stroke-length", o.finish.min_length_px, "Lines seen over less than this are left out (a stub continuing a longer line stays), pixels")
+      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(finish);
+
   // Shadow region (paper §VI).
   const std::string shade = "Shadows (paper VI)";
   add_enum(cmd, "--shadow", o.shadow.mode,
@@ -315,7 +332,7 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
       ->group(shade);
   cmd->add_flag("!--shadow-over-background", o.shadow.clip_to_surface,
                 "Paper mode: draw the whole region between a line and its projection, also where the background "
-                "is seen through it (default: only over the surface)")
+                "is seen through it; shading is not cut to the silhouette (default: only over the surface)")
       ->group(shade);
 
   // What is drawn and how it is written.

@@ -57,22 +57,40 @@ nlohmann::json surface_options_json(const differential::SurfaceOptions& s) {
             {"normal_cutoff", s.denoise.normal_cutoff}}}};
 }
 
-/// The view's lines as strokes, keeping only the kinds `selection` asks for.
+/// Who is drawn where two lines run together: the outline, then interior contours, borders, ridges and valleys.
+stylize::FusionRank fusion_rank(const view::ViewResult& view, std::size_t line) {
+  if (line < view.outline_count) return stylize::FusionRank::Outline;
+  if (line < view.contour_count) return stylize::FusionRank::Interior;
+  return view.lines[line].line.kind == LineKind::Boundary ? stylize::FusionRank::Boundary
+                                                          : stylize::FusionRank::Feature;
+}
+
+/// The view's lines as finished strokes (smoothed, short ones left out, doubles fused), keeping only the kinds
+/// `selection` asks for.
 std::vector<Stroke> line_strokes(const view::ViewResult& view, const LineSelection& selection,
-                                 const stylize::ThicknessOptions& thickness) {
+                                 const stylize::ThicknessOptions& thickness, const DrawOptions& options) {
   std::vector<Polyline> lines;
   std::vector<std::vector<std::uint8_t>> visible;
-  for (const view::ViewLine& v : view.lines) {
+  std::vector<stylize::FusionRank> line_rank;
+  for (std::size_t i = 0; i < view.lines.size(); ++i) {
+    const view::ViewLine& v = view.lines[i];
     const LineKind kind = v.line.kind;
     const bool wanted = (kind == LineKind::Contour && selection.contours) ||
                         (kind == LineKind::Ridge && selection.ridges) ||
                         (kind == LineKind::Valley && selection.valleys) ||
                         (kind == LineKind::Boundary && selection.boundaries);
     if (!wanted) continue;
-    lines.push_back(v.line);
+    lines.push_back(stylize::smooth_line(v.line, view.camera, options.finish));
     visible.push_back(v.visible);
+    line_rank.push_back(fusion_rank(view, i));
   }
-  return stylize::make_strokes(lines, view.camera, visible, thickness).strokes;
+  stylize::StrokesResult strokes = stylize::make_strokes(lines, view.camera, visible, thickness);
+  stylize::drop_short_strokes(strokes, options.finish);
+  std::vector<stylize::FusionRank> rank;
+  for (const std::uint32_t line : strokes.line) rank.push_back(line_rank[line]);
+  return stylize::fuse_strokes(std::move(strokes.strokes), rank, options.thickness.rho_max * options.thickness.cofi,
+                               options.fusion)
+      .strokes;
 }
 
 /// An empty drawing of the right size and camera (a cloud that could not be analysed).
@@ -136,15 +154,14 @@ void add_shadows(const Prepared& prepared, const view::ViewResult& view, const L
 /// Lines with thickness, then (when selected) shadow hatching; adds the seconds spent to `timings` and the shadow
 /// step's warnings to `warnings`.
 Drawing style(const Prepared& prepared, const view::ViewResult& view, const StyleRequest& request,
-              const stylize::ShadowOptions& shadow, const nlohmann::json& parameters, Timings& timings,
-              Warnings& warnings) {
+              const DrawOptions& options, const nlohmann::json& parameters, Timings& timings, Warnings& warnings) {
   auto start = Clock::now();
   Drawing d = empty_drawing(view.camera, prepared.cloud.origin, parameters);
-  d.strokes = line_strokes(view, request.lines, request.thickness);
+  d.strokes = line_strokes(view, request.lines, request.thickness, options);
   timings.drawing += seconds_since(start);
-  if (request.lines.hatching && shadow.mode != stylize::ShadowMode::None) {
+  if (request.lines.hatching && options.shadow.mode != stylize::ShadowMode::None) {
     start = Clock::now();
-    add_shadows(prepared, view, request.lines, shadow, d, warnings);
+    add_shadows(prepared, view, request.lines, options.shadow, d, warnings);
     timings.shadows += seconds_since(start);
   }
   return d;
@@ -241,7 +258,9 @@ nlohmann::json DrawOptions::to_json() const {
           {"scene", {{"disc_radius_factor", scene.disc_radius_factor}}},
           {"camera", camera_options_json(camera)},
           {"view", view.to_json()},
+          {"finish", finish.to_json()},
           {"thickness", thickness.to_json()},
+          {"fusion", fusion.to_json()},
           {"shadow", shadow.to_json()},
           {"render", render.to_json()},
           {"plotter", plotter.to_json()},
@@ -309,8 +328,8 @@ DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera
     return result;
   }
   const view::ViewResult v = compute_view(prepared, camera, options, result.timings, result.warnings);
-  result.drawing = style(prepared, v, {options.lines, options.thickness}, options.shadow, parameters, result.timings,
-                         result.warnings);
+  result.drawing =
+      style(prepared, v, {options.lines, options.thickness}, options, parameters, result.timings, result.warnings);
   plotter_paths(result.drawing, options, result.timings);
   return result;
 }
@@ -352,7 +371,7 @@ StageDrawings stage_drawings(const Prepared& prepared, const view::CameraOptions
   Warnings style_warnings;
   for (const auto& [stem, request] : columns) {
     style_warnings.clear();
-    out.stages.emplace_back(stem, style(prepared, v, request, options.shadow, parameters, out.timings, style_warnings));
+    out.stages.emplace_back(stem, style(prepared, v, request, options, parameters, out.timings, style_warnings));
     plotter_paths(out.stages.back().second, options, out.timings);
   }
   out.warnings.insert(out.warnings.end(), style_warnings.begin(), style_warnings.end());

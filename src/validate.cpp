@@ -192,6 +192,18 @@ void validate_thickness(const stylize::ThicknessOptions& t) {
   fraction("thickness.brush_end_fraction", t.brush_end_fraction);
 }
 
+void validate_finish(const stylize::FinishOptions& f, const stylize::FusionOptions& u) {
+  in_range("finish.smooth_passes", f.smooth_passes, 0, 100);
+  in_range("finish.corner_angle_deg", f.corner_angle_deg, 0, 180);
+  non_negative("finish.corner_arm_px", f.corner_arm_px, 1e5);
+  non_negative("--min-stroke-length", f.min_length_px, 1e5);
+  non_negative("finish.join_px", f.join_px, 1e5);
+  non_negative("--fusion-distance", u.distance_widths, 1e3);
+  non_negative("--fusion-min-stretch", u.min_stretch_px, 1e5);
+  non_negative("fusion.max_gap_px", u.max_gap_px, 1e5);
+  in_range("fusion.max_angle_deg", u.max_angle_deg, 0, 90);
+}
+
 void validate_shadow(const stylize::ShadowOptions& s) {
   if (s.light.direction) direction("--light", s.light.direction->cast<double>());
   // Embree aborts on rays with NaN directions: a light angle must be finite.
@@ -271,6 +283,7 @@ void validate(const DrawOptions& options) {
   if (options.max_memory_gb) positive("--max-memory", *options.max_memory_gb, 1e6);
   validate_view(options.view, options.scene);
   validate_thickness(options.thickness);
+  validate_finish(options.finish, options.fusion);
   validate_shadow(options.shadow);
   validate_render(options.render);
   validate_plotter(options.plotter);

@@ -18,6 +18,8 @@
 #include "pcsketch/features/ridge_valley_lines.h"
 #include "pcsketch/plotter/plot_order.h"
 #include "pcsketch/render/options.h"
+#include "pcsketch/stylize/fuse.h"
+#include "pcsketch/stylize/line_finish.h"
 #include "pcsketch/stylize/shadow.h"
 #include "pcsketch/stylize/thickness.h"
 #include "pcsketch/view/camera.h"
@@ -44,7 +46,9 @@ struct DrawOptions {
   view::SurfaceSceneOptions scene;             ///< the cloud as oriented discs for ray casting
   view::CameraOptions camera;                  ///< default: the paper's orthographic view along +z, 1024 × 1024 px
   view::ViewOptions view;                      ///< contours (z_max, …) and visibility
+  stylize::FinishOptions finish;               ///< smoothing that keeps corners, short strokes left out
   stylize::ThicknessOptions thickness;         ///< ρ_min, ρ_max, cofi, depth/angle/brush models
+  stylize::FusionOptions fusion;               ///< doubled lines drawn once (paper Fig. 2(d))
   /// Light, d, k set, attached hatching (paper §VI). The light turns with the camera here (stylize's own default
   /// keeps it fixed in world axes): for the paper's +z view both are the paper's Fig. 13 light; for any other view a
   /// world-fixed light often comes from behind and hatches nearly everything.

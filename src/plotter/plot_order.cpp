@@ -23,7 +23,8 @@ constexpr std::size_t kLayers = 6;
 constexpr std::size_t kNotPlotted = kLayers;
 
 std::size_t layer_of(const Stroke& s, bool hidden_drawn) {
-  if (s.image_points.empty()) return kNotPlotted;
+  if (s.image_points.empty() || s.fused_into) return kNotPlotted;  // a fused copy is drawn as its winner
+
   for (const Vec2f& p : s.image_points)
     if (!p.allFinite()) return kNotPlotted;
   if (!s.visible) return hidden_drawn && s.kind != LineKind::Hatch ? 0 : kNotPlotted;

@@ -53,6 +53,7 @@ nlohmann::json to_json(const Drawing& d) {
                          {"image_points", points2(s.image_points)},
                          {"widths", floats(s.widths)},
                          {"half_widths", floats(s.half_widths)}});
+    if (s.fused_into) polylines.back()["fused_into"] = *s.fused_into;
   }
   nlohmann::json regions = nlohmann::json::array();
   for (const ShadeRegion& r : d.regions) regions.push_back({{"grey", tidy(r.grey)}, {"polygon", points2(r.polygon)}});

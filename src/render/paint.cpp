@@ -97,7 +97,7 @@ std::vector<PaintLayer> paint_layers(const Drawing& d, const RenderOptions& o) {
   }
   for (std::size_t i = 0; i < d.strokes.size(); ++i) {
     const Stroke& s = d.strokes[i];
-    if (s.image_points.empty() || !finite(s.image_points)) continue;
+    if (s.image_points.empty() || !finite(s.image_points) || s.fused_into) continue;
     PaintStroke ps{i, {}};
     int layer = layer_of(s.kind);
     if (!s.visible) {

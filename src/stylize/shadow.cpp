@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -74,6 +75,30 @@ std::vector<Chain> chains(std::size_t n, bool closed, SegmentOk ok) {
   return out;
 }
 
+/// The block of chain `c` between hatch lines j − 1 and j (`corner(i, k)`: the image of vertex i's point on hatch
+/// line k, line 0 being the feature line), appended to `out`.
+template <class Corner>
+void add_block(const Chain& c, std::size_t j, Corner corner, float grey, const detail::SilhouetteMask* mask,
+               std::vector<ShadeRegion>& out) {
+  if (mask) {
+    // Linear between vertices, a block could cross a gap in the silhouette: it is cut at half-cell samples.
+    std::vector<std::array<Vec2f, 3>> cross;
+    for (std::size_t i : c.vertices) cross.push_back({corner(i, 0), corner(i, j - 1), corner(i, j)});
+    if (c.closed) cross.push_back(cross.front());
+    for (std::vector<Vec2f>& polygon : detail::clip_block(cross, *mask)) out.push_back({std::move(polygon), grey});
+    return;
+  }
+  // Inner boundary forward, outer boundary back: one polygon per block (a closed chain is an annulus with a
+  // zero-width seam, which fills correctly).
+  ShadeRegion r;
+  r.grey = grey;
+  for (std::size_t i : c.vertices) r.polygon.push_back(corner(i, j - 1));
+  if (c.closed) r.polygon.push_back(corner(c.vertices.front(), j - 1));
+  if (c.closed) r.polygon.push_back(corner(c.vertices.front(), j));
+  for (auto it = c.vertices.rbegin(); it != c.vertices.rend(); ++it) r.polygon.push_back(corner(*it, j));
+  out.push_back(std::move(r));
+}
+
 /// The paper's cast shadow of one line: hatch strokes per k and graded blocks.
 struct LineShadow {
   std::vector<Stroke> strokes;
@@ -82,7 +107,8 @@ struct LineShadow {
 };
 
 LineShadow line_shadow(const ShadowInput& in, const Polyline& line, const std::vector<std::uint8_t>& flags,
-                       const std::vector<float>& ts, const ShadowOptions& o, const Vec3f& light) {
+                       const std::vector<float>& ts, const ShadowOptions& o, const Vec3f& light,
+                       const detail::SilhouetteMask* mask) {
   LineShadow out;
   const std::size_t n = line.size();
   const float h = in.spacing;
@@ -154,15 +180,7 @@ LineShadow line_shadow(const ShadowInput& in, const Polyline& line, const std::v
            const std::size_t b = (s + 1) % n;
            return ok(s, j - 1) && ok(b, j - 1) && ok(s, j) && ok(b, j) && !jump(s);
          })) {
-      // Inner boundary forward, outer boundary back: one polygon per block (a closed chain is an annulus with a
-      // zero-width seam, which fills correctly).
-      ShadeRegion r;
-      r.grey = grey;
-      for (std::size_t i : c.vertices) r.polygon.push_back(image(point(i, j - 1)));
-      if (c.closed) r.polygon.push_back(image(point(c.vertices.front(), j - 1)));
-      if (c.closed) r.polygon.push_back(image(point(c.vertices.front(), j)));
-      for (auto it = c.vertices.rbegin(); it != c.vertices.rend(); ++it) r.polygon.push_back(image(point(*it, j)));
-      out.regions.push_back(std::move(r));
+      add_block(c, j, [&](std::size_t i, std::size_t k) { return image(point(i, k)); }, grey, mask, out.regions);
     }
   }
   return out;
@@ -273,6 +291,10 @@ ShadowResult shadow_hatching(const ShadowInput& in, const ShadowOptions& o) {
     return result;
   }
 
+  // Shading stays on the object: with clip_to_surface every block and hatch stroke is cut to the silhouette.
+  const std::optional<detail::SilhouetteMask> mask =
+      o.clip_to_surface ? std::optional(detail::silhouette_mask(in, o)) : std::nullopt;
+  const detail::SilhouetteMask* const clip = mask ? &*mask : nullptr;
   if (o.mode == ShadowMode::Paper || o.mode == ShadowMode::Both) {
     std::vector<float> ts;
     for (float k : o.k_set)
@@ -288,7 +310,8 @@ ShadowResult shadow_hatching(const ShadowInput& in, const ShadowOptions& o) {
               const Polyline& l = in.lines[i];
               const bool casts = l.kind == LineKind::Ridge || (l.kind == LineKind::Valley && o.cast_from_valleys);
               if (!casts || l.size() < 2) continue;
-              per_line[i] = line_shadow(in, l, in.visible.empty() ? kAllVisible : in.visible[i], ts, o, result.light);
+              per_line[i] =
+                  line_shadow(in, l, in.visible.empty() ? kAllVisible : in.visible[i], ts, o, result.light, clip);
             }
           });
     }
@@ -302,6 +325,12 @@ ShadowResult shadow_hatching(const ShadowInput& in, const ShadowOptions& o) {
   if (o.mode == ShadowMode::Attached || o.mode == ShadowMode::Both) {
     std::vector<Stroke> hatch = detail::attached_hatching(in, o, result.light);
     for (Stroke& s : hatch) result.strokes.push_back(std::move(s));
+  }
+  if (clip) {
+    std::vector<Stroke> clipped;
+    for (const Stroke& s : result.strokes)
+      for (Stroke& piece : detail::clip_stroke(s, *clip)) clipped.push_back(std::move(piece));
+    result.strokes = std::move(clipped);
   }
   return result;
 }

@@ -338,8 +338,11 @@ StrokesResult make_strokes(const std::vector<Polyline>& lines, const view::Camer
     for (std::size_t i = r.begin(); i != r.end(); ++i)
       per_line[i] = line_strokes(lines[i], visible.empty() ? kAllVisible : visible[i], camera, result.depth_range, o);
   });
-  for (auto& strokes : per_line)
-    for (Stroke& s : strokes) result.strokes.push_back(std::move(s));
+  for (std::uint32_t i = 0; i < per_line.size(); ++i)
+    for (Stroke& s : per_line[i]) {
+      result.strokes.push_back(std::move(s));
+      result.line.push_back(i);
+    }
   return result;
 }
 

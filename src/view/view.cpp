@@ -51,6 +51,7 @@ ViewResult compute_view(const PointCloud& cloud, const differential::Surface& su
                                            surface.denoised);
   result.timings.contour_connection = seconds_since(start);
   result.contour_count = contours.outline.size() + contours.interior.size();
+  result.outline_count = contours.outline.size();
   // An open sheet seen face-on has no outline but its border (a boundary line).
   const bool open_scan = std::find(border.begin(), border.end(), std::uint8_t{1}) != border.end();
   if (contours.outline.empty() && !cloud.empty() && !open_scan)

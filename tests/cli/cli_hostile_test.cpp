@@ -96,6 +96,9 @@ TEST_F(CliHostile, EveryNumericFlagWithNanInfNegativeZeroAndHuge) {
                                           "--shadow-d",
                                           "--shadow-k",
                                           "--hatch-spacing",
+                                          "--fusion-distance",
+                                          "--fusion-min-stretch",
+                                          "--min-stroke-length",
                                           "--pen-width",
                                           "--pen-width-mm",
                                           "--min-stroke-mm",
@@ -136,7 +139,8 @@ TEST_F(CliHostile, EveryNumericFlagWithNanInfNegativeZeroAndHuge) {
 TEST_F(CliHostile, BadValuesFailAtOnceNamingTheFlag) {
   // Embree aborted on a NaN light; --alpha 0 failed only after the whole computation; pen width nan was written.
   for (const std::string flags : {"--light-elevation nan", "--light-azimuth inf", "--contour-radius nan", "--alpha 0",
-                                  "--plotter --pen-width nan", "--hatch-spacing 0.001"}) {
+                                  "--plotter --pen-width nan", "--hatch-spacing 0.001",
+                                  "--fusion-distance 1e9"}) {
     SCOPED_TRACE(flags);
     const CommandRun r = limited(draw(flags));
     EXPECT_EQ(r.status, 1) << r.err;

@@ -110,6 +110,9 @@ TEST(Pipeline, SecondViewReusesPreparedWorkAndDiffers) {
 TEST(Pipeline, StageDrawingsFollowThePapersFigure19Columns) {
   DrawOptions o = small_image();
   o.camera.direction = Vec3d(-1, -1, -1);
+  // Column (d) is (b) and (c) stroke for stroke when nothing is fused; with fusion on (below) the fused copies are
+  // cut at the ends of their stretches, and (d) still holds every line of (b) and (c), length for length.
+  o.fusion.enabled = false;
   const Prepared p = prepare(test::cube(1.f, {.n = 12000}), o);
   const StageDrawings result = stage_drawings(p, o.camera, o);
   const auto& stages = result.stages;
@@ -133,6 +136,19 @@ TEST(Pipeline, StageDrawingsFollowThePapersFigure19Columns) {
   };
   EXPECT_LT(width_spread(fused), 1e-4f);
   EXPECT_GT(width_spread(stages[3].second), 0.5f);
+
+  o.fusion.enabled = true;
+  const StageDrawings with_fusion = stage_drawings(p, o.camera, o);
+  auto length = [](const Drawing& d) {
+    double sum = 0;
+    for (const Stroke& s : d.strokes) sum += s.image_length();
+    return sum;
+  };
+  const auto& f = with_fusion.stages;
+  EXPECT_NEAR(length(f[2].second), length(f[0].second) + length(f[1].second), 1e-3 * length(f[2].second));
+  std::size_t fused_copies = 0;
+  for (const Stroke& s : f[2].second.strokes) fused_copies += s.fused_into.has_value();
+  EXPECT_GT(fused_copies, 0u);  // the cube's rims: outline and ridge
 }
 
 // A perspective eye beyond the sphere looking away from it: nothing in view. stage_drawings reports what draw_view

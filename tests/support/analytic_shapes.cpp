@@ -82,6 +82,40 @@ PointCloud saddle(float a, const SampleSpec& spec) {
   });
 }
 
+namespace {
+
+// Adds the rectangle with corners p, p+u, p+u+v, p+v as two triangles.
+void add_rectangle(Mesh& mesh, const Vec3f& p, const Vec3f& u, const Vec3f& v) {
+  const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+  mesh.vertices.insert(mesh.vertices.end(), {p, p + u, p + u + v, p + v});
+  mesh.faces.push_back({base, base + 1, base + 2});
+  mesh.faces.push_back({base, base + 2, base + 3});
+}
+
+}  // namespace
+
+Mesh notched_box() {
+  const float Y = 0.8f, bottom = -0.6f, top = 0.6f, w = 0.3f, d = 0.4f, floor = top - d;
+  Mesh mesh;
+  const Vec3f ey(0, 2 * Y, 0);
+  const auto rect_xz = [&](float x0, float x1, float z0, float z1) {  // profile rectangle, both caps
+    add_rectangle(mesh, {x0, -Y, z0}, {x1 - x0, 0, 0}, {0, 0, z1 - z0});
+    add_rectangle(mesh, {x0, Y, z0}, {x1 - x0, 0, 0}, {0, 0, z1 - z0});
+  };
+  rect_xz(-1, -w, bottom, top);
+  rect_xz(-w, w, bottom, floor);
+  rect_xz(w, 1, bottom, top);
+  add_rectangle(mesh, {-1, -Y, bottom}, {2, 0, 0}, ey);             // bottom
+  add_rectangle(mesh, {-1, -Y, bottom}, {0, 0, top - bottom}, ey);  // x = -1
+  add_rectangle(mesh, {1, -Y, bottom}, {0, 0, top - bottom}, ey);   // x = +1
+  add_rectangle(mesh, {-1, -Y, top}, {1 - w, 0, 0}, ey);            // top, left of the notch
+  add_rectangle(mesh, {w, -Y, top}, {1 - w, 0, 0}, ey);             // top, right of the notch
+  add_rectangle(mesh, {-w, -Y, floor}, {0, 0, d}, ey);              // notch walls
+  add_rectangle(mesh, {w, -Y, floor}, {0, 0, d}, ey);
+  add_rectangle(mesh, {-w, -Y, floor}, {2 * w, 0, 0}, ey);          // notch floor
+  return mesh;
+}
+
 PointCloud cube(float a, const SampleSpec& spec) {
   return generate(spec, [&](std::mt19937& rng, Vec3f& p, Vec3f& n) {
     const int face = std::uniform_int_distribution<int>(0, 5)(rng);

@@ -26,6 +26,9 @@ PointCloud plane(float a, const SampleSpec& spec = {});
 PointCloud saddle(float a, const SampleSpec& spec = {});
 /// Surface of the axis-aligned cube [-a, a]³; normals are the face normals.
 PointCloud cube(float a, const SampleSpec& spec = {});
+/// Box [-1,1]×[-0.8,0.8]×[-0.6,0.6] with a notch x ∈ [-0.3,0.3], z ∈ [0.2, 0.6] cut across the top face along y,
+/// as triangles: sharp convex edges (the rims) and concave ones (the notch's inner edges).
+Mesh notched_box();
 /// Diagonal of the bounding box of a cloud (for noise relative to the diagonal).
 float diagonal(const PointCloud& cloud);
 

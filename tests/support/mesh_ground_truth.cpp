@@ -167,6 +167,13 @@ Vec3f face_normal(const Mesh& mesh, std::size_t f) {
 
 }  // namespace
 
+std::vector<std::uint8_t> mesh_silhouette(const Mesh& mesh, const view::Camera& camera) {
+  const DepthBuffer buffer = rasterise(mesh, camera);
+  std::vector<std::uint8_t> covered(buffer.depth.size());
+  for (std::size_t i = 0; i < covered.size(); ++i) covered[i] = std::isfinite(buffer.depth[i]);
+  return covered;
+}
+
 MeshContours mesh_contours(const Mesh& mesh, const view::Camera& camera, const MeshContourOptions& options) {
   // Facing of every face: front when its normal points toward the viewer.
   std::vector<char> front(mesh.faces.size());

@@ -75,6 +75,9 @@ struct LineMatch {
 /// Scores `drawn` against `truth` (image positions, pixels) with a tolerance in pixels. Empty sets score 0.
 LineMatch match_lines(const std::vector<Vec2f>& drawn, const std::vector<Vec2f>& truth, float tolerance_px);
 
+/// #W·#H flags, row-major: the pixels whose centre the mesh covers as seen by `camera` (its filled silhouette).
+std::vector<std::uint8_t> mesh_silhouette(const Mesh& mesh, const view::Camera& camera);
+
 /// Samples of a 2D polyline every `step_px` pixels (vertices included).
 std::vector<Vec2f> sample_polyline(const std::vector<Vec2f>& points, bool closed, float step_px);
 

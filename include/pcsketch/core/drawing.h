@@ -1,7 +1,9 @@
 #pragma once
 // A finished drawing of one view: strokes and shaded regions in image space, ready for any renderer.
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
 #include "pcsketch/core/polyline.h"
@@ -19,8 +21,18 @@ struct Stroke {
   std::vector<float> widths;        ///< #S, per-vertex width t_p·cofi, output pixels
   std::vector<float> half_widths;   ///< 2 per segment, output pixels (see above)
   float grey = 0.f;                 ///< ink level: 0 = black … 1 = white (hatch strokes get lighter far from the line)
+  /// Set when this stretch runs along another stroke and is drawn once, as that one (paper Fig. 2(d) "fused"):
+  /// the index, in Drawing::strokes, of the stroke drawn in its place. Kept in the JSON, not painted.
+  std::optional<std::uint32_t> fused_into;
 
   std::size_t segments() const { return points.size() < 2 ? 0 : points.size() - 1 + (closed ? 1 : 0); }
+  /// Length of the drawn line in the image, px (the closing segment included).
+  float image_length() const {
+    float length = 0.f;
+    for (std::size_t k = 0; k < segments(); ++k)
+      length += (image_points[(k + 1) % image_points.size()] - image_points[k]).norm();
+    return length;
+  }
 };
 
 /// A filled region (shadow block, paper §VI.B "area 1 > area 2 > area 3").

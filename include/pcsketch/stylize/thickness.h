@@ -107,6 +107,7 @@ std::vector<float> half_segment_widths(const std::vector<float>& widths, bool cl
 /// Strokes of one view, with the depth range the depth model used.
 struct StrokesResult {
   std::vector<Stroke> strokes;
+  std::vector<std::uint32_t> line;  ///< #S: the index in `lines` of the line each stroke was cut from
   DepthRange depth_range;
 };
 

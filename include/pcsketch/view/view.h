@@ -38,6 +38,7 @@ struct ViewResult {
   /// each with visibility.
   std::vector<ViewLine> lines;
   std::size_t contour_count = 0;  ///< how many of `lines` are this view's contours
+  std::size_t outline_count = 0;  ///< how many of them (the first) are the outline
   ViewTimings timings;
   Warnings warnings;
 };
