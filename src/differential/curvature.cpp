@@ -7,8 +7,8 @@
 #include <optional>
 #include <span>
 
-#include "differential/common.h"
-#include "neighbourhood/parallel_chunks.h"
+#include "common.h"
+#include "core/parallel_chunks.h"
 
 namespace pcsketch::differential {
 

@@ -1,0 +1,42 @@
+# Installs the library (each stage's static library and the public headers), the pcsketch CLI, a CMake package
+# (find_package(pcsketch) gives pcsketch::pcsketch) and pkg-config's pcsketch.pc. tests/downstream/ builds against
+# the installed tree (scripts/downstream.sh, run by CI).
+include(CMakePackageConfigHelpers)
+
+get_property(pcsketch_stages GLOBAL PROPERTY PCSKETCH_STAGES)
+list(TRANSFORM pcsketch_stages PREPEND pcsketch_ OUTPUT_VARIABLE pcsketch_stage_targets)
+install(TARGETS pcsketch ${pcsketch_stage_targets} EXPORT pcsketchTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS pcsketch_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/pcsketch DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+
+set(pcsketch_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/pcsketch)
+install(EXPORT pcsketchTargets NAMESPACE pcsketch:: DESTINATION ${pcsketch_cmake_dir})
+configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/pcsketchConfig.cmake.in
+                              ${PROJECT_BINARY_DIR}/pcsketchConfig.cmake INSTALL_DESTINATION ${pcsketch_cmake_dir})
+# 0.x: a minor version may change the API.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/pcsketchConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/pcsketchConfig.cmake ${PROJECT_BINARY_DIR}/pcsketchConfigVersion.cmake
+        DESTINATION ${pcsketch_cmake_dir})
+
+# pkg-config: the libraries in link order (pipeline first, core last), then the wrapped ones as plain linker
+# arguments rather than Requires: pkg-config --cflags would put Requires' (and Requires.private's) include
+# directories on the user's command line, and the libraries are static, so they are needed for any link.
+set(pcsketch_pc_libs "")
+foreach(stage IN LISTS pcsketch_stages)
+  string(PREPEND pcsketch_pc_libs "-lpcsketch_${stage} ")
+endforeach()
+string(PREPEND pcsketch_pc_libs "-lpcsketch ")
+string(REPLACE ";" " " pcsketch_pc_cairo "${CAIRO_LDFLAGS};${PNG_LDFLAGS}")
+file(GENERATE OUTPUT ${PROJECT_BINARY_DIR}/pcsketch.pc CONTENT "prefix=${CMAKE_INSTALL_PREFIX}
+libdir=\${prefix}/${CMAKE_INSTALL_LIBDIR}
+includedir=\${prefix}/${CMAKE_INSTALL_INCLUDEDIR}
+
+Name: pcsketch
+Description: Pen-and-ink sketch drawings from raw 3D point clouds
+Version: ${PROJECT_VERSION}
+Requires: eigen3 nlohmann_json
+Cflags: -I\${includedir}
+Libs: -L\${libdir} ${pcsketch_pc_libs} $<TARGET_LINKER_FILE:embree> $<TARGET_LINKER_FILE:TBB::tbb> ${pcsketch_pc_cairo}
+")
+install(FILES ${PROJECT_BINARY_DIR}/pcsketch.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
