@@ -28,7 +28,9 @@ foreach(stage IN LISTS pcsketch_stages)
 endforeach()
 string(PREPEND pcsketch_pc_libs "-lpcsketch ")
 string(REPLACE ";" " " pcsketch_pc_cairo "${CAIRO_LDFLAGS};${PNG_LDFLAGS}")
-file(GENERATE OUTPUT ${PROJECT_BINARY_DIR}/pcsketch.pc CONTENT "prefix=${CMAKE_INSTALL_PREFIX}
+# The prefix relative to the .pc file: the tree works wherever it is installed (cmake --install --prefix).
+file(RELATIVE_PATH pcsketch_pc_up /${CMAKE_INSTALL_LIBDIR}/pkgconfig /)
+file(GENERATE OUTPUT ${PROJECT_BINARY_DIR}/pcsketch.pc CONTENT "prefix=\${pcfiledir}/${pcsketch_pc_up}
 libdir=\${prefix}/${CMAKE_INSTALL_LIBDIR}
 includedir=\${prefix}/${CMAKE_INSTALL_INCLUDEDIR}
 
