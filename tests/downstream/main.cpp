@@ -9,7 +9,9 @@
 #include "pcsketch/pcsketch.h"
 
 // The wrapped libraries are private: their include directories must not reach a user of pcsketch.
-static_assert(!__has_include(<cairo.h>), "cairo's include directory leaked into pcsketch's users");
+#if __has_include(<cairo.h>)
+#error "cairo's include directory leaked into pcsketch's users"
+#endif
 
 int main() {
   // A Fibonacci sphere: evenly spread points, a closed surface with one outline contour in any view.
