@@ -26,19 +26,10 @@ set(pcsketch_pc_libs "")
 foreach(stage IN LISTS pcsketch_stages)
   string(PREPEND pcsketch_pc_libs "-lpcsketch_${stage} ")
 endforeach()
-string(PREPEND pcsketch_pc_libs "-lpcsketch ")
+string(STRIP "-lpcsketch ${pcsketch_pc_libs}" pcsketch_pc_libs)
 string(REPLACE ";" " " pcsketch_pc_cairo "${CAIRO_LDFLAGS};${PNG_LDFLAGS}")
 # The prefix relative to the .pc file: the tree works wherever it is installed (cmake --install --prefix).
 file(RELATIVE_PATH pcsketch_pc_up /${CMAKE_INSTALL_LIBDIR}/pkgconfig /)
-file(GENERATE OUTPUT ${PROJECT_BINARY_DIR}/pcsketch.pc CONTENT "prefix=\${pcfiledir}/${pcsketch_pc_up}
-libdir=\${prefix}/${CMAKE_INSTALL_LIBDIR}
-includedir=\${prefix}/${CMAKE_INSTALL_INCLUDEDIR}
-
-Name: pcsketch
-Description: Pen-and-ink sketch drawings from raw 3D point clouds
-Version: ${PROJECT_VERSION}
-Requires: eigen3 nlohmann_json
-Cflags: -I\${includedir}
-Libs: -L\${libdir} ${pcsketch_pc_libs} $<TARGET_LINKER_FILE:embree> $<TARGET_LINKER_FILE:TBB::tbb> ${pcsketch_pc_cairo}
-")
+string(REGEX REPLACE "/$" "" pcsketch_pc_up "${pcsketch_pc_up}")
+configure_file(${CMAKE_CURRENT_LIST_DIR}/pcsketch.pc.in ${PROJECT_BINARY_DIR}/pcsketch.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/pcsketch.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
