@@ -72,7 +72,7 @@ DrawOptions apply_options(DrawOptions options, const py::kwargs& kwargs) {
 /// An (N, k) array of `T` copied out of `array`. @throws ValueError naming `what` for another shape.
 template <class T>
 py::array_t<T, py::array::c_style | py::array::forcecast> rows_of(const py::handle& array, py::ssize_t k,
-                                                                 const std::string& what) {
+                                                                  const std::string& what) {
   auto a = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(array);
   if (!a || a.ndim() != 2 || a.shape(1) != k)
     throw py::value_error(what + ": expected an array of shape (N, " + std::to_string(k) + ")");
@@ -110,8 +110,7 @@ py::array_t<double> world_array(const std::vector<Vec3f>& points, const Vec3d& o
   py::array_t<double> out({static_cast<py::ssize_t>(points.size()), py::ssize_t{3}});
   auto o = out.mutable_unchecked<2>();
   for (std::size_t i = 0; i < points.size(); ++i)
-    for (int c = 0; c < 3; ++c)
-      o(static_cast<py::ssize_t>(i), c) = origin[c] + static_cast<double>(points[i][c]);
+    for (int c = 0; c < 3; ++c) o(static_cast<py::ssize_t>(i), c) = origin[c] + static_cast<double>(points[i][c]);
   return out;
 }
 
@@ -177,8 +176,8 @@ py::list strokes_of(const PyDrawing& d) {
   for (const Stroke& s : d.drawing.strokes) {
     py::array_t<float> widths(static_cast<py::ssize_t>(s.widths.size()), s.widths.data());
     py::array_t<float> half(static_cast<py::ssize_t>(s.half_widths.size()), s.half_widths.data());
-    out.append(PyStroke{std::string(to_string(s.kind)), s.visible, s.closed, s.grey, float_rows(s.image_points),
-                        widths, half, world_array(s.points, d.drawing.origin)});
+    out.append(PyStroke{std::string(to_string(s.kind)), s.visible, s.closed, s.grey, float_rows(s.image_points), widths,
+                        half, world_array(s.points, d.drawing.origin)});
   }
   return out;
 }
@@ -198,6 +197,63 @@ py::tuple read_file(const std::string& path) {
   const PointCloud& c = read.cloud;
   return py::make_tuple(world_array(c.positions, c.origin),
                         c.has_normals() ? py::object(float_rows(c.normals)) : py::object(py::none()));
+}
+
+/// The classes prepare() and draw() return.
+void bind_results(py::module_& m) {
+  py::class_<PreparedCloud>(m, "Prepared")
+      .def("draw", &draw_prepared,
+           "Draws one view: view=(x, y, z), up=(x, y, z), size=(w, h), azimuth=..., and the other view, "
+           "thickness, shadow and output flags of `pcsketch draw` as keyword options.")
+      .def_property_readonly(
+          "points",
+          [](const PreparedCloud& c) { return world_array(c.prepared->cloud.positions, c.prepared->cloud.origin); },
+          "(N, 3) float64: the points analysed (outliers left out, denoised), world coordinates")
+      .def_property_readonly(
+          "normals", [](const PreparedCloud& c) { return float_rows(c.prepared->cloud.normals); },
+          "(N, 3) float32: their oriented normals")
+      .def_property_readonly(
+          "spacing", [](const PreparedCloud& c) { return c.prepared->surface.spacing; },
+          "mean point spacing h, the unit of the length options")
+      .def_readonly("warnings", &PreparedCloud::warnings);
+
+  py::class_<PyStroke>(m, "Stroke")
+      .def_readonly("kind", &PyStroke::kind, "contour, ridge, valley, hatch or boundary")
+      .def_readonly("visible", &PyStroke::visible)
+      .def_readonly("closed", &PyStroke::closed)
+      .def_readonly("grey", &PyStroke::grey, "ink level, 0 black ... 1 white")
+      .def_readonly("image_points", &PyStroke::image_points, "(S, 2) float32 pixels, origin top-left, v down")
+      .def_readonly("points", &PyStroke::points, "(S, 3) float64 world coordinates")
+      .def_readonly("widths", &PyStroke::widths, "(S,) float32 width per vertex, pixels")
+      .def_readonly("half_widths", &PyStroke::half_widths, "(2 per segment,) float32, pixels");
+
+  py::class_<PyDrawing>(m, "Drawing")
+      .def_property_readonly("width", [](const PyDrawing& d) { return d.drawing.width; })
+      .def_property_readonly("height", [](const PyDrawing& d) { return d.drawing.height; })
+      .def_property_readonly("strokes", &strokes_of, "list of Stroke, in paint order")
+      .def_property_readonly("regions", &regions_of, "list of (polygon (K, 2) float32 pixels, grey) shade regions")
+      .def_readonly("warnings", &PyDrawing::warnings)
+      .def(
+          "svg",
+          [](const PyDrawing& d) {
+            py::gil_scoped_release release;
+            return render::svg_string(d.drawing, d.render);
+          },
+          "The SVG document (Inkscape layers), as `pcsketch draw -o x.svg` writes it.")
+      .def(
+          "json",
+          [](const PyDrawing& d) {
+            py::gil_scoped_release release;
+            return render::to_json(d.drawing).dump();
+          },
+          "Every stroke as JSON, as `pcsketch draw --json` writes it.")
+      .def(
+          "write",
+          [](const PyDrawing& d, const std::string& path) {
+            py::gil_scoped_release release;
+            render::write_drawing(d.drawing, path, d.render);
+          },
+          py::arg("path"), "Writes .svg, .png, .pdf or .json, chosen by the extension.");
 }
 
 }  // namespace
@@ -228,45 +284,5 @@ PYBIND11_MODULE(pcsketch, m) {
         "lines. Keyword options: the flags of `pcsketch draw` (neighbours=24, alpha=0.15, no_denoise=True, ...); "
         "view options given here become draw()'s defaults.");
 
-  py::class_<PreparedCloud>(m, "Prepared")
-      .def("draw", &draw_prepared,
-           "Draws one view: view=(x, y, z), up=(x, y, z), size=(w, h), azimuth=..., and the other view, "
-           "thickness, shadow and output flags of `pcsketch draw` as keyword options.")
-      .def_property_readonly("points", [](const PreparedCloud& c) {
-        return world_array(c.prepared->cloud.positions, c.prepared->cloud.origin);
-      }, "(N, 3) float64: the points analysed (outliers left out, denoised), world coordinates")
-      .def_property_readonly("normals", [](const PreparedCloud& c) { return float_rows(c.prepared->cloud.normals); },
-                             "(N, 3) float32: their oriented normals")
-      .def_property_readonly("spacing", [](const PreparedCloud& c) { return c.prepared->surface.spacing; },
-                             "mean point spacing h, the unit of the length options")
-      .def_readonly("warnings", &PreparedCloud::warnings);
-
-  py::class_<PyStroke>(m, "Stroke")
-      .def_readonly("kind", &PyStroke::kind, "contour, ridge, valley, hatch or boundary")
-      .def_readonly("visible", &PyStroke::visible)
-      .def_readonly("closed", &PyStroke::closed)
-      .def_readonly("grey", &PyStroke::grey, "ink level, 0 black ... 1 white")
-      .def_readonly("image_points", &PyStroke::image_points, "(S, 2) float32 pixels, origin top-left, v down")
-      .def_readonly("points", &PyStroke::points, "(S, 3) float64 world coordinates")
-      .def_readonly("widths", &PyStroke::widths, "(S,) float32 width per vertex, pixels")
-      .def_readonly("half_widths", &PyStroke::half_widths, "(2 per segment,) float32, pixels");
-
-  py::class_<PyDrawing>(m, "Drawing")
-      .def_property_readonly("width", [](const PyDrawing& d) { return d.drawing.width; })
-      .def_property_readonly("height", [](const PyDrawing& d) { return d.drawing.height; })
-      .def_property_readonly("strokes", &strokes_of, "list of Stroke, in paint order")
-      .def_property_readonly("regions", &regions_of, "list of (polygon (K, 2) float32 pixels, grey) shade regions")
-      .def_readonly("warnings", &PyDrawing::warnings)
-      .def("svg", [](const PyDrawing& d) {
-        py::gil_scoped_release release;
-        return render::svg_string(d.drawing, d.render);
-      }, "The SVG document (Inkscape layers), as `pcsketch draw -o x.svg` writes it.")
-      .def("json", [](const PyDrawing& d) {
-        py::gil_scoped_release release;
-        return render::to_json(d.drawing).dump();
-      }, "Every stroke as JSON, as `pcsketch draw --json` writes it.")
-      .def("write", [](const PyDrawing& d, const std::string& path) {
-        py::gil_scoped_release release;
-        render::write_drawing(d.drawing, path, d.render);
-      }, py::arg("path"), "Writes .svg, .png, .pdf or .json, chosen by the extension.");
+  bind_results(m);
 }
