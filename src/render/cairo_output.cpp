@@ -78,7 +78,8 @@ void paint(cairo_t* cr, const Drawing& d, const RenderOptions& o, Ink ink) {
 }
 
 /// The PDF's creation and modification date, ISO 8601 UTC: SOURCE_DATE_EPOCH (seconds, the reproducible-builds
-/// convention) when set, else the epoch itself. Never the clock: the same drawing gives the same bytes.
+/// convention) when set, else the epoch itself. Never the clock: the same drawing gives the same bytes. (cairo 1.16
+/// writes a date given this way without the "D:" prefix of its own dates; poppler reads it, pdf.js shows none.)
 std::string pdf_date() {
   std::time_t t = 0;
   if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch && *epoch) {
