@@ -7,7 +7,12 @@ cd "$(dirname "$0")/.."
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cmake --install build/ci --prefix "$tmp/prefix" > /dev/null
-# nanoflann is header-only and must not be required of users; cairo and Embree are link-only.
+# The wrapped libraries stay inside: no installed header includes them, the exported targets do not name nanoflann
+# (header-only, not needed by users), cairo and Embree are link-only.
+if grep -rE '#include <(nanoflann|embree|cairo|png)' "$tmp/prefix/include"; then
+  echo "downstream: an installed header includes a wrapped library" >&2
+  exit 1
+fi
 config=$(dirname "$(find "$tmp/prefix" -name pcsketchConfig.cmake)")
 if grep -q nanoflann "$config"/pcsketchTargets*.cmake; then
   echo "downstream: the installed package refers to nanoflann" >&2
