@@ -177,23 +177,25 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
 
 void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   auto args = std::make_shared<DrawArgs>();
-  DrawOptions& o = args->options;
   CLI::App* cmd = app.add_subcommand(
       "draw", "Sketch drawing of a point cloud: contours, ridges, valleys, thickness, shadow hatching (paper Fig. 2)");
   cmd->fallthrough();  // the global flags (-q, --threads) may also follow the subcommand
   cmd->add_option("INPUT", args->input, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)")
       ->required();
   add_read_options(cmd, args->read);
-  add_memory_option(cmd, o.max_memory_gb);
+  add_memory_option(cmd, args->options.max_memory_gb);
   cmd->add_option("-o,--output", args->outputs, "Output file; format from the extension: .svg .png .pdf (repeatable)");
   cmd->add_option("--json", args->json, "Write every stroke as JSON (world and image coordinates, widths)");
   cmd->add_option("--stages", args->stages,
                   "Directory for the paper's Fig. 19 columns: b_contours, c_ridges_valleys, d_fused, e_thickness, "
                   "f_shadow (formats of -o, PNG if none)");
   cmd->add_flag("--timings", args->timings, "Print seconds per stage (the paper's Table 2 rows marked *)");
+  add_camera_options(cmd, args->options.camera, args->views);
+  add_draw_options(cmd, args->options);
+  cmd->callback([args, &global] { run_draw(*args, global); });
+}
 
-  add_camera_options(cmd, o.camera, args->views);
-
+void add_draw_options(CLI::App* cmd, DrawOptions& o) {
   add_surface_options(cmd, o.surface);
   add_ridge_valley_options(cmd, o.features);
 
@@ -372,8 +374,6 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
          "SVG/PDF page width in millimetres (default: the image size in CSS pixels)")
       ->check(CLI::PositiveNumber)
       ->group(out);
-
-  cmd->callback([args, &global] { run_draw(*args, global); });
 }
 
 }  // namespace pcsketch::cli

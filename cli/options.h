@@ -12,6 +12,7 @@
 #include "pcsketch/differential/surface.h"
 #include "pcsketch/features/ridge_valley_lines.h"
 #include "pcsketch/io/read_cloud.h"
+#include "pcsketch/pipeline.h"
 
 namespace pcsketch::cli {
 
@@ -42,6 +43,11 @@ void add_surface_options(CLI::App* cmd, differential::SurfaceOptions& surface);
 /// Ridge/valley flags of the paper's §IV.A (detection, tracing, joining) bound to `options`, which must outlive the
 /// parse.
 void add_ridge_valley_options(CLI::App* cmd, features::RidgeValleyOptions& options);
+
+/// Every flag of `draw` that sets a DrawOptions field but --max-memory (camera, surface analysis, ridges and valleys,
+/// contours and visibility, thickness, shadows, output), bound to `options`, which must outlive the parse. The
+/// Python module registers the same flags to read its keyword arguments.
+void add_draw_options(CLI::App* cmd, DrawOptions& options);
 
 /// --max-memory GB bound to `target` (draw, features), which must outlive the parse.
 void add_memory_option(CLI::App* cmd, std::optional<double>& target);

@@ -9,7 +9,7 @@ $SUDO apt-get update -q
 $SUDO apt-get install -y -q --no-install-recommends \
   build-essential g++ cmake ninja-build pkg-config git ca-certificates \
   libeigen3-dev libnanoflann-dev libtbb-dev libcli11-dev libcairo2-dev libpng-dev libembree-dev nlohmann-json3-dev \
-  libgtest-dev libgmock-dev libbenchmark-dev \
+  libgtest-dev libgmock-dev libbenchmark-dev pybind11-dev python3-dev python3-numpy python3-pytest \
   clang libclang-rt-14-dev libxml2-utils
 cmake --preset release
 cmake --build --preset release

@@ -7,10 +7,10 @@
 #include <optional>
 #include <span>
 
-#include "differential/common.h"
-#include "differential/graph_curvature.h"
-#include "differential/group_fit.h"
-#include "neighbourhood/parallel_chunks.h"
+#include "common.h"
+#include "graph_curvature.h"
+#include "core/parallel_chunks.h"
+#include "group_fit.h"
 
 namespace pcsketch::differential {
 

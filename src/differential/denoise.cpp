@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numeric>
 
-#include "differential/common.h"
-#include "neighbourhood/parallel_chunks.h"
+#include "common.h"
+#include "core/parallel_chunks.h"
 #include "pcsketch/differential/curvature.h"
 #include "pcsketch/differential/normals.h"
 

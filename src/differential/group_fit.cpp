@@ -1,4 +1,4 @@
-#include "differential/group_fit.h"
+#include "group_fit.h"
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -7,8 +7,8 @@
 #include <span>
 #include <tbb/parallel_sort.h>
 
-#include "differential/graph_curvature.h"
-#include "neighbourhood/parallel_chunks.h"
+#include "graph_curvature.h"
+#include "core/parallel_chunks.h"
 
 namespace pcsketch::differential::detail {
 

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <atomic>
 
-#include "differential/common.h"
-#include "neighbourhood/parallel_chunks.h"
+#include "common.h"
+#include "core/parallel_chunks.h"
 
 namespace pcsketch::differential {
 

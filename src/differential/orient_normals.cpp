@@ -9,7 +9,7 @@
 #include <functional>
 #include <limits>
 
-#include "differential/common.h"
+#include "common.h"
 
 namespace pcsketch::differential {
 

@@ -1,6 +1,6 @@
 // Column layouts of text files: parsing --columns, reading header names, guessing from the values.
 
-#include "io/columns.h"
+#include "columns.h"
 
 #include <algorithm>
 #include <array>

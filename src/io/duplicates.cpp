@@ -4,7 +4,7 @@
 #include <bit>
 #include <cstring>
 
-#include "io/raw_cloud.h"
+#include "raw_cloud.h"
 
 namespace pcsketch::io::detail {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-#include "io/raw_cloud.h"
+#include "raw_cloud.h"
 
 namespace pcsketch::io::detail {
 namespace {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 
-#include "io/raw_cloud.h"
-#include "io/text_scan.h"
+#include "raw_cloud.h"
+#include "text_scan.h"
 
 namespace pcsketch::io::detail {
 namespace {

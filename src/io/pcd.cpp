@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "io/ply_types.h"
-#include "io/raw_cloud.h"
-#include "io/text_scan.h"
+#include "ply_types.h"
+#include "raw_cloud.h"
+#include "text_scan.h"
 
 namespace pcsketch::io::detail {
 namespace {

@@ -8,9 +8,9 @@
 #include <cstring>
 #include <optional>
 
-#include "io/ply_types.h"
-#include "io/raw_cloud.h"
-#include "io/text_scan.h"
+#include "ply_types.h"
+#include "raw_cloud.h"
+#include "text_scan.h"
 
 namespace pcsketch::io::detail {
 namespace {

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "io/ply_types.h"
+#include "ply_types.h"
 #include "pcsketch/core/atomic_file.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/io/ply.h"

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "io/columns.h"
-#include "io/mapped_file.h"
-#include "io/raw_cloud.h"
+#include "columns.h"
+#include "mapped_file.h"
+#include "raw_cloud.h"
 
 namespace pcsketch::io {
 namespace {

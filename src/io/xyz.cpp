@@ -5,9 +5,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "io/columns.h"
-#include "io/raw_cloud.h"
-#include "io/text_scan.h"
+#include "columns.h"
+#include "raw_cloud.h"
+#include "text_scan.h"
 
 namespace pcsketch::io::detail {
 namespace {

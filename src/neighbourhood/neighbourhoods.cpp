@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "neighbourhood/parallel_chunks.h"
+#include "core/parallel_chunks.h"
 #include "pcsketch/core/error.h"
 
 namespace pcsketch::neighbourhood {

@@ -1,4 +1,4 @@
-#include "plotter/end_grid.h"
+#include "end_grid.h"
 
 #include <algorithm>
 #include <cmath>

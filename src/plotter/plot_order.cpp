@@ -7,8 +7,8 @@
 
 #include "pcsketch/core/assert.h"
 #include "pcsketch/core/error.h"
-#include "plotter/end_grid.h"
-#include "plotter/stroke_ops.h"
+#include "end_grid.h"
+#include "stroke_ops.h"
 
 namespace pcsketch::plotter {
 

@@ -1,4 +1,4 @@
-#include "plotter/stroke_ops.h"
+#include "stroke_ops.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "pcsketch/core/drawing.h"
-#include "plotter/end_grid.h"
+#include "end_grid.h"
 
 namespace pcsketch::plotter::detail {
 

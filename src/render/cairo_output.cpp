@@ -5,12 +5,15 @@
 #include <png.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <ctime>
 #include <memory>
+#include <string>
 
 #include "pcsketch/core/error.h"
 #include "pcsketch/render/pdf.h"
 #include "pcsketch/render/png.h"
-#include "render/paint.h"
+#include "paint.h"
 
 namespace pcsketch::render {
 
@@ -74,12 +77,32 @@ void paint(cairo_t* cr, const Drawing& d, const RenderOptions& o, Ink ink) {
   }
 }
 
+/// The PDF's creation and modification date, ISO 8601 UTC: SOURCE_DATE_EPOCH (seconds, the reproducible-builds
+/// convention) when set, else the epoch itself. Never the clock: the same drawing gives the same bytes. (cairo 1.16
+/// writes a date given this way without the "D:" prefix of its own dates; poppler reads it, pdf.js shows none.)
+std::string pdf_date() {
+  std::time_t t = 0;
+  if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"); epoch && *epoch) {
+    char* end = nullptr;
+    const long long seconds = std::strtoll(epoch, &end, 10);
+    if (*end == '\0' && seconds >= 0 && seconds < 253402300800) t = static_cast<std::time_t>(seconds);  // < 10000 AD
+  }
+  std::tm utc{};
+  gmtime_r(&t, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
 }  // namespace
 
 void write_pdf(const Drawing& d, const std::filesystem::path& path, const RenderOptions& o) {
   const auto page = detail::page_size_pt(d, o);
   SurfacePtr surface(cairo_pdf_surface_create(path.c_str(), page[0], page[1]));
   check(cairo_surface_status(surface.get()), path, "PDF");
+  const std::string date = pdf_date();
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, date.c_str());
+  cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_MOD_DATE, date.c_str());
   ContextPtr cr(cairo_create(surface.get()));
   cairo_scale(cr.get(), page[0] / d.width, page[1] / d.height);
   paint(cr.get(), d, o, Ink::Rgb);

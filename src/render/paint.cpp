@@ -1,4 +1,4 @@
-#include "render/paint.h"
+#include "paint.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "pcsketch/core/error.h"
-#include "render/paint.h"
+#include "paint.h"
 
 namespace pcsketch::render {
 

@@ -11,7 +11,7 @@
 #include <limits>
 #include <numbers>
 
-#include "stylize/shadow_detail.h"
+#include "shadow_detail.h"
 
 namespace pcsketch::stylize::detail {
 

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "pcsketch/core/error.h"
-#include "stylize/shadow_detail.h"
+#include "shadow_detail.h"
 
 namespace pcsketch::stylize {
 

@@ -9,7 +9,7 @@
 #include <atomic>
 #include <cmath>
 
-#include "stylize/shadow_detail.h"
+#include "shadow_detail.h"
 
 namespace pcsketch::stylize::detail {
 

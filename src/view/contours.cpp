@@ -11,7 +11,7 @@
 
 #include "pcsketch/core/error.h"
 #include "core/angular_gap.h"
-#include "view/point_grid.h"
+#include "point_grid.h"
 
 namespace pcsketch::view {
 

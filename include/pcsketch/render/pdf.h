@@ -8,7 +8,9 @@
 
 namespace pcsketch::render {
 
-/// One page of width × height CSS pixels (0.75 pt each) or RenderOptions::page_width_mm wide.
+/// One page of width × height CSS pixels (0.75 pt each) or RenderOptions::page_width_mm wide. The document's
+/// creation and modification dates are SOURCE_DATE_EPOCH (environment, seconds) when set, else 1970-01-01, never the
+/// clock: the same drawing gives the same bytes.
 /// @throws pcsketch::Error if cairo cannot write `path`.
 void write_pdf(const Drawing& drawing, const std::filesystem::path& path, const RenderOptions& options = {});
 
