@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -157,6 +158,43 @@ TEST(Curvature, FandiskVertexNormalsAgreeWithTheMesh) {
   analyse_surface(cloud);
   for (std::size_t i = 0; i < cloud.size(); ++i)
     ASSERT_GT(cloud.normals[i].dot(vertex_normals[cloud.source_index[i]]), 0.f) << "vertex " << cloud.source_index[i];
+}
+
+// Noisy clouds fit once per group of nearby points, except where a crease lies in the support: there each point is
+// fitted on its own exact k nearest (docs/geometry.md, "Group fits").
+TEST(Curvature, GroupFitsOnSmoothPartsAndPointFitsAtCreases) {
+  test::SampleSpec spec{.n = 20000, .seed = 11};
+  spec.noise_sigma = 0.001f * test::diagonal(test::sphere(1.f, {.n = 1000}));
+  const Analysed sphere = analyse(test::sphere(1.f, spec));
+  ASSERT_GT(sphere.surface.curvature.fit_neighbours, sphere.surface.neighbourhoods.k);
+  EXPECT_LT(sphere.surface.curvature.point_fits, sphere.cloud.size() / 10);  // smooth: groups share a fit
+
+  const float a = 1.f;
+  const Analysed cube = analyse(test::cube(a, {.n = 30000, .seed = 7, .noise_sigma = 0.001f * 2.f * std::sqrt(3.f)}));
+  const Curvature& c = cube.surface.curvature;
+  ASSERT_GT(c.fit_neighbours, cube.surface.neighbourhoods.k);
+  EXPECT_GT(c.point_fits, 0u);
+  // The fit radius holding fit_neighbours points on a face of density n / (24 a²); points far from every edge lie
+  // on one plane, where the shared fit leaves only the noise.
+  const float radius = std::sqrt(static_cast<float>(c.fit_neighbours) * 24.f * a * a / (3.14159265f * 30000.f));
+  std::size_t far = 0, far_shared = 0, near_edge_total = 0;
+  for (std::size_t i = 0; i < cube.cloud.size(); ++i) {
+    const Vec3f p = cube.cloud.positions[i].cwiseAbs();
+    // Distance to the nearest edge: the second largest coordinate's gap to the face (a point on a face has one
+    // coordinate near a; an edge is where two are).
+    std::array<float, 3> q{p.x(), p.y(), p.z()};
+    std::sort(q.begin(), q.end());
+    const float to_edge = a - q[1];
+    if (to_edge > 2.f * radius) {
+      ++far;
+      far_shared += std::abs(c.k1[i]) < 0.2f && std::abs(c.k2[i]) < 0.2f;
+    } else {
+      ++near_edge_total;
+    }
+  }
+  ASSERT_GT(far, 1000u);
+  EXPECT_GE(static_cast<double>(far_shared), 0.95 * static_cast<double>(far));  // flat faces read as flat
+  EXPECT_LE(c.point_fits, near_edge_total);  // fitted alone only near the creases
 }
 
 TEST(Curvature, ExplicitFitSizeIsUsed) {
