@@ -44,8 +44,7 @@ class GroupNeighbours {
  public:
   GroupNeighbours(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& shared,
                   const neighbourhood::KdTree& tree, std::size_t k)
-      : points_(points), shared_(shared), tree_(tree), k_(k),
-        widen_(1.25f * std::sqrt(static_cast<float>(k) / static_cast<float>(std::max<std::size_t>(shared.k, 1)))) {}
+      : points_(points), shared_(shared), tree_(tree), k_(k) {}
 
   /// Gathers the ball around the group's points.
   void gather(std::span<const std::uint32_t> group) {
@@ -80,15 +79,12 @@ class GroupNeighbours {
 
  private:
   /// Estimated distance of the k-th neighbour: the shared k-th distance scaled by √(k / shared k), with a margin.
-  float estimate(std::size_t i) const {
-    return shared_.k > 0 ? widen_ * shared_.distances[i * shared_.k + shared_.k - 1] : 0.f;
-  }
+  float estimate(std::size_t i) const { return static_cast<float>(1.25 * fit_radius(shared_, i, k_)); }
 
   const std::vector<Vec3f>& points_;
   const neighbourhood::Neighbourhoods& shared_;
   const neighbourhood::KdTree& tree_;
   std::size_t k_;
-  float widen_;
   Vec3f centre_ = Vec3f::Zero();
   float radius_ = 0;
   std::vector<std::uint32_t> ball_, found_;
@@ -109,9 +105,9 @@ struct GroupFitter {
   std::vector<std::uint32_t> ball;
   std::vector<Vec3d> local;
 
-  /// One group: one cubic, or a fit per point where the group's quadric leaves more than the noise.
-  /// Supports are balls of the radius estimated to hold `fit` points (radius queries: a k-NN query of 512 sorts as
-  /// it goes, and picking the k nearest from a ball was most of the cost). Returns whether it fell back.
+  /// One group: one height field (solve), or a fit per point over its exact k nearest where solve finds a crease.
+  /// The group's support is the ball of the radius estimated to hold `fit` points (picking the k nearest out of a
+  /// ball was a quarter of the cost). Returns whether it fell back to the per-point fits.
   bool run(std::span<const std::uint32_t> group) {
     Vec3d centre = Vec3d::Zero(), normal = Vec3d::Zero();
     double radius = 0;
@@ -164,9 +160,8 @@ struct GroupFitter {
 
   /// The group's height field: the quadric, plus the cubic terms shrunk towards 0 by how far they stand out of the
   /// noise (weight 1 − cubic_shrink·σ̂²/ΔRSS, at least 0; ΔRSS is the residual the 4 cubic terms remove, σ̂²χ²₄ on
-  /// pure noise). Away from the group's centre the
-  /// cubic terms add their own noise: on a noisy sphere they only add it, on a shape whose curvature changes across
-  /// the group they follow the change. None where even the cubic leaves over `misfit_factor` × σ̂² per degree of
+  /// pure noise). Away from the group's centre the cubic terms add their own noise: on a noisy sphere they only add
+  /// it, on a shape whose curvature changes across the group they follow the change. None where even the cubic leaves over `misfit_factor` × σ̂² per degree of
   /// freedom: a crease, or a shape changing faster than a cubic follows, lies in the support. There the cubic
   /// bends towards the face beyond the crease, and the point's own support, centred on it, is what places the crest.
   std::optional<Vec10> solve(const Mat10& normal_matrix, const Vec10& rhs, double zz, std::size_t count) const {
