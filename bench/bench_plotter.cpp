@@ -75,7 +75,7 @@ int run(int argc, char** argv) {
     m.camera.width = m.camera.height = 512;
     options.render.page_width_mm = page_mm;
     const DrawResult drawn = draw_view(prepare(io::read_point_cloud(m.path).cloud, options), m.camera, options);
-    const double mm_per_px = render::mm_per_pixel(drawn.drawing.width, options.render);
+    const double mm_per_px = render::mm_per_pixel(drawn.drawing, options.render);
     Stopwatch clock;
     const plotter::PlotterResult r = plotter::plot_order(drawn.drawing, mm_per_px, options.plotter);
     const double ms = 1e3 * clock.seconds();

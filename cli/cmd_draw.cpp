@@ -95,6 +95,7 @@ void check_outputs(const DrawArgs& args, const std::vector<NamedCamera>& views) 
       keys.push_back(key);
     }
   if (args.stages.empty()) return;
+  if (args.views.sheet) throw OptionError("--stages", "conflicts with --sheet: stage images are of one view");
   std::error_code ec;
   const fs::file_status status = fs::status(args.stages, ec);
   if (ec && status.type() != fs::file_type::not_found)
@@ -118,7 +119,8 @@ void draw_one_view(const DrawArgs& args, const Prepared& prepared, const NamedCa
                    Timings& timings) {
   const DrawOptions& options = args.options;
   if (!args.outputs.empty()) {
-    DrawResult result = draw_view(prepared, v.camera, options);
+    DrawResult result = args.views.sheet ? draw_sheet(prepared, v.camera, *args.views.sheet, options)
+                                         : draw_view(prepared, v.camera, options);
     print_warnings(global, result.warnings);
     const auto start = Clock::now();
     std::vector<fs::path> paths;
@@ -374,6 +376,7 @@ void add_draw_options(CLI::App* cmd, DrawOptions& o) {
          "SVG/PDF page width in millimetres (default: the image size in CSS pixels)")
       ->check(CLI::PositiveNumber)
       ->group(out);
+  add_page_options(cmd, o.page);
 }
 
 }  // namespace pcsketch::cli

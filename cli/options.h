@@ -49,6 +49,9 @@ void add_ridge_valley_options(CLI::App* cmd, features::RidgeValleyOptions& optio
 /// Python module registers the same flags to read its keyword arguments.
 void add_draw_options(CLI::App* cmd, DrawOptions& options);
 
+/// Page flags (--scale, --units, --scale-bar, --north-arrow) bound to `page`, which must outlive the parse.
+void add_page_options(CLI::App* cmd, page::PageOptions& page);
+
 /// --max-memory GB bound to `target` (draw, features), which must outlive the parse.
 void add_memory_option(CLI::App* cmd, std::optional<double>& target);
 

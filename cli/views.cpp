@@ -92,6 +92,12 @@ void add_camera_options(CLI::App* cmd, view::CameraOptions& c, ViewRequest& requ
                   "out.svg -> out-az000.svg, out-az030.svg, …")
       ->check(CLI::Range(1, 360))
       ->group(group);
+  cmd->add_option_function<std::string>(
+         "--sheet", [&request](const std::string& s) { request.sheet = page::parse_arrangement(s); },
+         "Front, top, side and iso views on one page, the first three at one scale and aligned: first (ISO: top "
+         "view below the front, left view on its right) or third angle (ASME: top view above, right view right)")
+      ->check(CLI::IsMember({"first", "third"}))
+      ->group(group);
   cmd->add_flag_function(
          "--perspective", [&c](std::int64_t) { c.projection = view::Projection::Perspective; },
          "Perspective projection (default orthographic)")
@@ -123,6 +129,16 @@ void add_camera_options(CLI::App* cmd, view::CameraOptions& c, ViewRequest& requ
 
 std::vector<NamedCamera> resolve_views(const view::CameraOptions& camera, const ViewRequest& request) {
   const std::vector<std::string> flags = sight_flags(camera);
+  if (request.sheet) {
+    std::string other = !flags.empty() ? flags[0] : !request.views.empty() ? "--views" : "";
+    if (request.turntable) other = "--turntable";
+    if (camera.projection == view::Projection::Perspective) other = "--perspective";
+    if (!other.empty())
+      throw OptionError("--sheet", "conflicts with " + other + ": the sheet's views are its own, orthographic");
+    view::CameraOptions front = camera;  // what the sheet's first view is, so that it is validated as drawn
+    front.named = view::NamedView::Front;
+    return {{"", front}};
+  }
   if (!request.views.empty() && request.turntable)
     throw OptionError("--views", "conflicts with --turntable: give one list of views");
   if (!request.views.empty() && !flags.empty())

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
+#include "pcsketch/page/page.h"
 #include "pcsketch/view/camera.h"
 
 namespace pcsketch::cli {
@@ -28,6 +29,7 @@ struct ViewRequest {
   std::vector<std::string> views;  ///< --views front,top,…: named views
   std::optional<int> turntable;    ///< --turntable N: N azimuths, 360/N degrees apart
   bool up_given = false;           ///< --up was given (alone it means the three-quarter view)
+  std::optional<page::Arrangement> sheet;  ///< --sheet first|third: front, top, side and iso on one page
 };
 
 /// One view to draw and the suffix of its files ("" for a single view: the files are named as given).
@@ -40,9 +42,9 @@ struct NamedCamera {
 /// --views, --turntable) bound to `camera` and `request`, which must outlive the parse.
 void add_camera_options(CLI::App* cmd, view::CameraOptions& camera, ViewRequest& request);
 
-/// The views to draw, in order. `--up` with no view flag is the three-quarter view; `--views` and `--turntable`
+/// The views to draw, in order (one for --sheet: its camera gives up, size and margin). `--up` with no view flag is the three-quarter view; `--views` and `--turntable`
 /// give one camera per view (turntable azimuths named az000, az030, …, at --elevation or 15°).
-/// @throws OptionError (exit 1) for view flags that conflict.
+/// @throws OptionError (exit 1) for view flags that conflict (--sheet sets every direction itself).
 std::vector<NamedCamera> resolve_views(const view::CameraOptions& camera, const ViewRequest& request);
 
 /// `path` with "-name" before its extension (out.svg → out-front.svg); `path` itself when `name` is empty.

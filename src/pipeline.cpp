@@ -174,7 +174,7 @@ void plotter_paths(Drawing& drawing, const DrawOptions& options, Timings& timing
   const auto start = Clock::now();
   const bool hidden = options.render.hidden_lines == render::HiddenLines::Dashed;
   plotter::PlotterResult plotted = plotter::plot_order(
-      drawing, render::mm_per_pixel(drawing.width, options.render), options.plotter, hidden);
+      drawing, render::mm_per_pixel(drawing, options.render), options.plotter, hidden);
   drawing = std::move(plotted.drawing);
   drawing.plotter = {{"before_ordering", plotted.before.to_json()},
                      {"after_ordering", plotted.after.to_json()},
@@ -182,6 +182,15 @@ void plotter_paths(Drawing& drawing, const DrawOptions& options, Timings& timing
                      {"duplicate_hatching_mm", plotted.duplicate_hatching_mm},
                      {"short_strokes_dropped", plotted.short_strokes_dropped}};
   timings.drawing += seconds_since(start);
+}
+
+/// The page (scale, scale bar, north arrow) of a drawing at `pixels_per_unit`, then with render.plotter its plotter
+/// paths.
+void finish_page(Drawing& drawing, double pixels_per_unit, const std::optional<Vec2f>& north,
+                 const DrawOptions& options, Timings& timings, Warnings& warnings) {
+  const Warnings page_warnings = page::annotate(drawing, pixels_per_unit, north, options.page);
+  warnings.insert(warnings.end(), page_warnings.begin(), page_warnings.end());
+  plotter_paths(drawing, options, timings);
 }
 
 view::ViewResult compute_view(const Prepared& prepared, const view::Camera& camera, const DrawOptions& options,
@@ -199,58 +208,6 @@ view::ViewResult compute_view(const Prepared& prepared, const view::Camera& came
 
 }  // namespace
 
-namespace {
-
-/// Every stage of Timings in pipeline order with its row name (the paper's Table 2 name where it has one): the one
-/// list that total(), all_rows() and += walk.
-constexpr std::array<std::pair<std::string_view, double Timings::*>, 16> kTimingRows{{
-    {"read", &Timings::read},
-    {"reorder", &Timings::reorder},
-    {"neighbourhoods", &Timings::neighbourhoods},
-    {"outliers", &Timings::outliers},
-    {"denoise", &Timings::denoise},
-    {"normals", &Timings::normals},
-    {"curvature", &Timings::curvature},
-    {"ridge-valley points extraction", &Timings::ridge_valley_points},
-    {"ridge-valley points connection", &Timings::ridge_valley_connection},
-    {"boundary", &Timings::boundary},
-    {"scene", &Timings::scene},
-    {"contour points extraction", &Timings::contour_points},
-    {"contour line connection", &Timings::contour_connection},
-    {"visibility", &Timings::visibility},
-    {"shadows", &Timings::shadows},
-    {"drawing", &Timings::drawing},
-}};
-
-}  // namespace
-
-double Timings::total() const {
-  double sum = 0;
-  for (const auto& [name, field] : kTimingRows) sum += this->*field;
-  return sum;
-}
-
-std::vector<std::pair<std::string_view, double>> Timings::table_rows() const {
-  return {{"ridge-valley points extraction", ridge_valley_points},
-          {"ridge-valley points connection", ridge_valley_connection},
-          {"contour points extraction", contour_points},
-          {"contour line connection", contour_connection},
-          {"drawing", drawing},
-          {"total", total()}};
-}
-
-std::vector<std::pair<std::string_view, double>> Timings::all_rows() const {
-  std::vector<std::pair<std::string_view, double>> rows;
-  for (const auto& [name, field] : kTimingRows) rows.emplace_back(name, this->*field);
-  rows.emplace_back("total", total());
-  return rows;
-}
-
-Timings& Timings::operator+=(const Timings& o) {
-  for (const auto& [name, field] : kTimingRows) this->*field += o.*field;
-  return *this;
-}
-
 nlohmann::json DrawOptions::to_json() const {
   return {{"surface", surface_options_json(surface)},
           {"features", features::to_json(features)},
@@ -264,6 +221,7 @@ nlohmann::json DrawOptions::to_json() const {
           {"shadow", shadow.to_json()},
           {"render", render.to_json()},
           {"plotter", plotter.to_json()},
+          {"page", page.to_json()},
           {"lines",
            {{"contours", lines.contours}, {"ridges", lines.ridges}, {"valleys", lines.valleys},
             {"hatching", lines.hatching}, {"boundaries", lines.boundaries}}},
@@ -330,7 +288,41 @@ DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera
   const view::ViewResult v = compute_view(prepared, camera, options, result.timings, result.warnings);
   result.drawing =
       style(prepared, v, {options.lines, options.thickness}, options, parameters, result.timings, result.warnings);
-  plotter_paths(result.drawing, options, result.timings);
+  finish_page(result.drawing, camera.scale, page::north_in_image(camera), options, result.timings, result.warnings);
+  return result;
+}
+
+DrawResult draw_sheet(const Prepared& prepared, const view::CameraOptions& camera_options,
+                      page::Arrangement arrangement, const DrawOptions& options) {
+  // Each view unfinished (no page, no plotter paths): the sheet is finished as one page.
+  DrawOptions view_options = options;
+  view_options.page = {};
+  view_options.render.plotter = false;
+  DrawResult result;
+  std::vector<page::SheetView> views;
+  for (const view::NamedView name : page::sheet_views(arrangement)) {
+    view::CameraOptions camera = camera_options;
+    camera.projection = view::Projection::Orthographic;
+    camera.direction.reset();
+    camera.azimuth_deg.reset();
+    camera.elevation_deg.reset();
+    camera.named = name;
+    DrawResult drawn = draw_view(prepared, camera, view_options);
+    result.timings += drawn.timings;
+    result.warnings.insert(result.warnings.end(), drawn.warnings.begin(), drawn.warnings.end());
+    views.push_back({name, std::move(drawn.drawing),
+                     view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera)});
+  }
+  auto [sheet, scale] = page::compose_sheet(std::move(views), arrangement);
+  result.drawing = std::move(sheet);
+  result.drawing.parameters["page"] = options.page.to_json();
+  result.drawing.parameters["render"] = options.render.to_json();
+  DrawOptions sheet_options = options;
+  if (options.page.north_arrow) {
+    result.warnings.push_back("--north-arrow: not drawn on a sheet, whose views look different ways");
+    sheet_options.page.north_arrow = false;
+  }
+  finish_page(result.drawing, scale, std::nullopt, sheet_options, result.timings, result.warnings);
   return result;
 }
 
@@ -372,7 +364,8 @@ StageDrawings stage_drawings(const Prepared& prepared, const view::CameraOptions
   for (const auto& [stem, request] : columns) {
     style_warnings.clear();
     out.stages.emplace_back(stem, style(prepared, v, request, options, parameters, out.timings, style_warnings));
-    plotter_paths(out.stages.back().second, options, out.timings);
+    finish_page(out.stages.back().second, camera.scale, page::north_in_image(camera), options, out.timings,
+                style_warnings);
   }
   out.warnings.insert(out.warnings.end(), style_warnings.begin(), style_warnings.end());
   return out;

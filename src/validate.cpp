@@ -251,6 +251,22 @@ void validate_plotter(const plotter::PlotterOptions& p) {
   non_negative("--min-stroke-mm", p.min_stroke_mm, 1e4);
 }
 
+/// A stated scale needs the model's unit and no second page width; scale bar and north arrow need a uniform scale.
+void validate_page(const page::PageOptions& p, const render::RenderOptions& r) {
+  if (p.scale) open_range("--scale", *p.scale, 0, 1e6);
+  if (p.scale && p.units == page::Units::None)
+    throw OptionError("--scale", "needs --units mm|cm|m: the unit of the model's coordinates");
+  if (p.scale && r.page_width_mm)
+    throw OptionError("--scale", "conflicts with --page-width-mm: a stated scale sets the page size, give one");
+}
+
+/// The page's scale, bar and arrow measure an orthographic view: a perspective has no one scale.
+void page_needs_orthographic(const page::PageOptions& p, const view::CameraOptions& c) {
+  if (c.projection != view::Projection::Perspective) return;
+  const char* flag = p.scale ? "--scale" : p.scale_bar ? "--scale-bar" : p.north_arrow ? "--north-arrow" : nullptr;
+  if (flag) throw OptionError(flag, "needs an orthographic view: a perspective has no single scale (drop --perspective)");
+}
+
 }  // namespace
 
 double image_bytes(const DrawOptions& o, const view::CameraOptions& camera) {
@@ -267,6 +283,7 @@ double image_bytes(const DrawOptions& o, const view::CameraOptions& camera) {
 
 void validate(const DrawOptions& options, const view::CameraOptions& camera) {
   validate_camera(camera);
+  page_needs_orthographic(options.page, camera);
   const double bytes = image_bytes(options, camera);
   if (bytes > kMaxImageBytes)
     throw OptionError("--size", std::to_string(camera.width) + "x" + std::to_string(camera.height) + " needs about " +
@@ -287,6 +304,7 @@ void validate(const DrawOptions& options) {
   validate_shadow(options.shadow);
   validate_render(options.render);
   validate_plotter(options.plotter);
+  validate_page(options.page, options.render);
   validate(options, options.camera);
 }
 

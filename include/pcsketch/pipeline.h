@@ -16,6 +16,7 @@
 #include "pcsketch/differential/surface.h"
 #include "pcsketch/features/boundary_lines.h"
 #include "pcsketch/features/ridge_valley_lines.h"
+#include "pcsketch/page/page.h"
 #include "pcsketch/plotter/plot_order.h"
 #include "pcsketch/render/options.h"
 #include "pcsketch/stylize/fuse.h"
@@ -55,6 +56,7 @@ struct DrawOptions {
   stylize::ShadowOptions shadow{.light = {.follow_camera = true}};
   render::RenderOptions render;                ///< hidden lines, plotter mode, page size (used by the writers)
   plotter::PlotterOptions plotter;             ///< with render.plotter: merging, sorting, dabs left out (page mm)
+  page::PageOptions page;                      ///< stated scale (1:20), scale bar, north arrow
   LineSelection lines;                         ///< which kinds of line are drawn
   /// Clouds with fewer points than this give an empty drawing and a warning instead of an analysis: a surface
   /// needs a neighbourhood (k) per point. 3 is the least a plane needs; smaller clouds cannot be drawn.
@@ -129,6 +131,13 @@ DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera
 
 /// prepare() then draw_view() with options.camera. Timings and warnings of both steps.
 DrawResult draw(PointCloud cloud, const DrawOptions& options = {});
+
+/// The views of technical drawing on one page (page::compose_sheet): front, top, side and iso from one analysis,
+/// front, top and side at one scale and aligned, in the first- or third-angle arrangement. `camera` gives the up
+/// direction, the size of each view and the margin; its direction of sight is not used. With options.page.scale the
+/// page scale is that of the aligned views.
+DrawResult draw_sheet(const Prepared& prepared, const view::CameraOptions& camera, page::Arrangement arrangement,
+                      const DrawOptions& options = {});
 
 /// File stems of the paper's Fig. 19 columns, in order (stage_drawings; the CLI checks -o against them).
 inline constexpr std::array<std::string_view, 5> kStageNames = {"b_contours", "c_ridges_valleys", "d_fused",

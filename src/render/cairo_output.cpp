@@ -53,6 +53,32 @@ void set_ink(cairo_t* cr, Ink ink, double grey) {
   else cairo_set_source_rgba(cr, 0, 0, 0, grey);
 }
 
+/// The page's scale bar, north arrow and view names, black, over the model's lines.
+void paint_annotations(cairo_t* cr, const Annotations& a, Ink ink) {
+  set_ink(cr, ink, 0.0);
+  cairo_set_line_width(cr, a.width);
+  cairo_set_dash(cr, nullptr, 0, 0);
+  for (const auto& line : a.lines) {
+    trace(cr, line, false);
+    cairo_stroke(cr);
+  }
+  for (const auto& fill : a.fills) {
+    trace(cr, fill, true);
+    cairo_fill(cr);
+  }
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  for (const Label& label : a.labels) {
+    cairo_set_font_size(cr, label.size);
+    cairo_text_extents_t extents;
+    cairo_text_extents(cr, label.text.c_str(), &extents);
+    const double shift = label.anchor == Label::Anchor::Start ? 0.0
+                         : label.anchor == Label::Anchor::Middle ? 0.5 * extents.x_advance
+                                                                 : extents.x_advance;
+    cairo_move_to(cr, label.position.x() - shift, label.position.y());
+    cairo_show_text(cr, label.text.c_str());
+  }
+}
+
 /// Paints every layer in image pixels onto `cr` (already scaled to the page).
 void paint(cairo_t* cr, const Drawing& d, const RenderOptions& o, Ink ink) {
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
@@ -75,6 +101,7 @@ void paint(cairo_t* cr, const Drawing& d, const RenderOptions& o, Ink ink) {
       }
     }
   }
+  paint_annotations(cr, d.annotations, ink);
 }
 
 /// The PDF's creation and modification date, ISO 8601 UTC: SOURCE_DATE_EPOCH (seconds, the reproducible-builds

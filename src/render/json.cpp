@@ -33,6 +33,15 @@ nlohmann::json points2(const std::vector<Vec2f>& points) {
   return a;
 }
 
+nlohmann::json annotations_json(const Annotations& a) {
+  nlohmann::json lines = nlohmann::json::array(), fills = nlohmann::json::array(), labels = nlohmann::json::array();
+  for (const auto& line : a.lines) lines.push_back(points2(line));
+  for (const auto& fill : a.fills) fills.push_back(points2(fill));
+  for (const Label& l : a.labels)
+    labels.push_back({{"position", {tidy(l.position.x()), tidy(l.position.y())}}, {"text", l.text}, {"size", tidy(l.size)}});
+  return {{"lines", std::move(lines)}, {"fills", std::move(fills)}, {"labels", std::move(labels)}, {"width", tidy(a.width)}};
+}
+
 }  // namespace
 
 nlohmann::json to_json(const Drawing& d) {
@@ -64,6 +73,8 @@ nlohmann::json to_json(const Drawing& d) {
                       {"polylines", std::move(polylines)},
                       {"regions", std::move(regions)}};
   if (!d.plotter.is_null()) j["plotter"] = d.plotter;
+  if (d.page_mm_per_pixel) j["page"] = {{"mm_per_pixel", *d.page_mm_per_pixel}};
+  if (!d.annotations.empty()) j["annotations"] = annotations_json(d.annotations);
   return j;
 }
 

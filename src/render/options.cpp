@@ -20,12 +20,15 @@ nlohmann::json RenderOptions::to_json() const {
   return j;
 }
 
-double mm_per_pixel(int image_width, const RenderOptions& o) {
-  return o.page_width_mm && image_width > 0 ? *o.page_width_mm / image_width : 25.4 / 96.0;
+double mm_per_pixel(const Drawing& d, const RenderOptions& o) {
+  if (d.page_mm_per_pixel) return *d.page_mm_per_pixel;
+  return o.page_width_mm && d.width > 0 ? *o.page_width_mm / d.width : 25.4 / 96.0;
 }
 
-float pen_width_px(int image_width, const RenderOptions& o) {
-  return o.pen_width ? *o.pen_width : static_cast<float>(o.pen_width_mm / mm_per_pixel(image_width, o));
+bool page_in_mm(const Drawing& d, const RenderOptions& o) { return d.page_mm_per_pixel || o.page_width_mm; }
+
+float pen_width_px(const Drawing& d, const RenderOptions& o) {
+  return o.pen_width ? *o.pen_width : static_cast<float>(o.pen_width_mm / mm_per_pixel(d, o));
 }
 
 }  // namespace pcsketch::render

@@ -109,7 +109,7 @@ std::vector<PaintLayer> paint_layers(const Drawing& d, const RenderOptions& o) {
     } else if (o.plotter) {
       std::vector<Vec2f> pts = s.image_points;
       if (pts.size() == 1) pts.push_back(pts[0]);
-      ps.runs.push_back(Run{std::move(pts), s.closed && s.image_points.size() > 2, pen_width_px(d.width, o), 0.f});
+      ps.runs.push_back(Run{std::move(pts), s.closed && s.image_points.size() > 2, pen_width_px(d, o), 0.f});
     } else {
       ps.runs = width_runs(s, o);
     }
@@ -128,7 +128,7 @@ std::vector<PaintLayer> paint_layers(const Drawing& d, const RenderOptions& o) {
 std::array<double, 2> page_size_pt(const Drawing& d, const RenderOptions& o) {
   if (d.width <= 0 || d.height <= 0) throw Error("render: drawing size must be positive");
   // CSS pixel: 1/96 in = 0.75 pt; a millimetre is 72/25.4 pt.
-  const double pt_per_px = mm_per_pixel(d.width, o) * 72.0 / 25.4;
+  const double pt_per_px = mm_per_pixel(d, o) * 72.0 / 25.4;
   if (!(pt_per_px > 0) || !std::isfinite(pt_per_px)) throw Error("render: page width must be positive");
   return {d.width * pt_per_px, d.height * pt_per_px};
 }

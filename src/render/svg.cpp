@@ -83,6 +83,38 @@ void append_run(std::string& out, NumberWriter& num, const detail::Run& run, con
   out += "/>\n";
 }
 
+/// The page's scale bar, north arrow and view names, in a layer after the model's.
+void append_annotations(std::string& out, NumberWriter& num, const Annotations& a) {
+  if (a.empty()) return;
+  out += "  <g inkscape:groupmode=\"layer\" id=\"layer8\" inkscape:label=\"8 annotations\" fill=\"none\" "
+         "stroke=\"#000000\" stroke-width=\"";
+  num(a.width);
+  out += "\">\n";
+  for (const auto& line : a.lines) {
+    out += "    <path d=\"";
+    append_points(out, num, line, false);
+    out += "\"/>\n";
+  }
+  for (const auto& fill : a.fills) {
+    out += "    <path d=\"";
+    append_points(out, num, fill, true);
+    out += "\" fill=\"#000000\" stroke=\"none\"/>\n";
+  }
+  static constexpr const char* kAnchor[] = {"start", "middle", "end"};
+  for (const Label& label : a.labels) {
+    out += "    <text x=\"";
+    num(label.position.x());
+    out += "\" y=\"";
+    num(label.position.y());
+    out += "\" font-family=\"sans-serif\" font-size=\"";
+    num(label.size);
+    out += "\" text-anchor=\"";
+    out += kAnchor[static_cast<int>(label.anchor)];
+    out += "\" fill=\"#000000\" stroke=\"none\">" + xml_escaped(label.text) + "</text>\n";
+  }
+  out += "  </g>\n";
+}
+
 }  // namespace
 
 std::string svg_string(const Drawing& d, const RenderOptions& o) {
@@ -96,8 +128,9 @@ std::string svg_string(const Drawing& d, const RenderOptions& o) {
   out += "     xmlns:sodipodi=\"http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd\" version=\"1.1\"\n";
   out += "     width=\"";
   // Page size: CSS pixels (0.75 pt) or millimetres; the viewBox keeps every coordinate in image pixels.
-  const double to_unit = o.page_width_mm ? 25.4 / 72.0 : 1.0 / 0.75;
-  const char* unit = o.page_width_mm ? "mm" : "px";
+  const bool in_mm = page_in_mm(d, o);
+  const double to_unit = in_mm ? 25.4 / 72.0 : 1.0 / 0.75;
+  const char* unit = in_mm ? "mm" : "px";
   page_num(page[0] * to_unit);
   out += unit;
   out += "\" height=\"";
@@ -137,6 +170,7 @@ std::string svg_string(const Drawing& d, const RenderOptions& o) {
     }
     out += "  </g>\n";
   }
+  append_annotations(out, num, d.annotations);
   out += "</svg>\n";
   return out;
 }

@@ -58,7 +58,7 @@ TEST(Pipeline, PlotterModeOrdersTheStrokesAndRecordsThePenTravel) {
   ASSERT_FALSE(plotted.plotter.is_null());
   const nlohmann::json& before = plotted.plotter["before_ordering"];
   const nlohmann::json& after = plotted.plotter["after_ordering"];
-  const plotter::PlotStats stats = plotter::plot_stats(plain, render::mm_per_pixel(plain.width, o.render));
+  const plotter::PlotStats stats = plotter::plot_stats(plain, render::mm_per_pixel(plain, o.render));
   EXPECT_EQ(before["strokes"], stats.strokes);
   EXPECT_DOUBLE_EQ(before["pen_up_mm"].get<double>(), stats.pen_up_mm);
   EXPECT_LE(after["pen_up_mm"].get<double>(), before["pen_up_mm"].get<double>());

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "pcsketch/core/polyline.h"
@@ -41,6 +42,24 @@ struct ShadeRegion {
   float grey = 0.5f;           ///< 0 = black … 1 = white
 };
 
+/// Text on the page: a scale bar's figures, a view's name.
+struct Label {
+  Vec2f position = Vec2f::Zero();  ///< pixels: the baseline's start, middle or end (see `anchor`)
+  std::string text;
+  float size = 12.f;  ///< font size, pixels
+  enum class Anchor { Start, Middle, End } anchor = Anchor::Start;
+};
+
+/// What the page adds around the model's lines (scale bar, north arrow, view names): drawn in a layer of its own,
+/// black, never fused, sorted or thickened.
+struct Annotations {
+  std::vector<std::vector<Vec2f>> lines;  ///< open polylines, pixels
+  std::vector<std::vector<Vec2f>> fills;  ///< filled polygons (scale-bar cells, arrow head), pixels
+  std::vector<Label> labels;
+  float width = 1.f;                      ///< line width, pixels
+  bool empty() const { return lines.empty() && fills.empty() && labels.empty(); }
+};
+
 /// Everything a renderer needs, plus what reproduces it.
 struct Drawing {
   int width = 0, height = 0;       ///< pixels
@@ -48,6 +67,10 @@ struct Drawing {
   nlohmann::json camera;           ///< Camera::to_json()
   nlohmann::json parameters;       ///< every option used, for reproducibility
   nlohmann::json plotter;          ///< plotter paths only: pen travel before and after ordering (else null)
+  /// Page millimetres per pixel fixed by a stated scale (page::PageOptions::scale); the writers then size the page
+  /// from it instead of RenderOptions::page_width_mm. Unset: the page follows the render options.
+  std::optional<double> page_mm_per_pixel;
+  Annotations annotations;
   std::vector<Stroke> strokes;
   std::vector<ShadeRegion> regions;
 };

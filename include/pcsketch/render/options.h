@@ -4,6 +4,8 @@
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 
+#include "pcsketch/core/drawing.h"
+
 namespace pcsketch::render {
 
 /// Hidden runs of lines (Stroke::visible == false) are always kept in the Drawing and the JSON; this decides whether
@@ -48,11 +50,14 @@ struct RenderOptions {
   nlohmann::json to_json() const;
 };
 
-/// Page millimetres per image pixel of a drawing `image_width` pixels wide: page_width_mm / image_width, or
-/// 25.4 / 96 (a CSS pixel) when the page width is unset.
-double mm_per_pixel(int image_width, const RenderOptions& options);
+/// Page millimetres per image pixel of `drawing`: its stated scale's (Drawing::page_mm_per_pixel) when set, else
+/// page_width_mm / width, or 25.4 / 96 (a CSS pixel) when the page width is unset too.
+double mm_per_pixel(const Drawing& drawing, const RenderOptions& options);
+
+/// Whether the page of `drawing` is measured in millimetres (a stated scale or page_width_mm), not CSS pixels.
+bool page_in_mm(const Drawing& drawing, const RenderOptions& options);
 
 /// The plotter pen's width in image pixels: `pen_width` when set, else `pen_width_mm` on the page.
-float pen_width_px(int image_width, const RenderOptions& options);
+float pen_width_px(const Drawing& drawing, const RenderOptions& options);
 
 }  // namespace pcsketch::render
