@@ -41,3 +41,13 @@ if [[ -f $data/fandisk.off ]]; then
   draw fandisk_clean "$samples/clean.ply" --view 1,1,1
   draw fandisk_noisy "$samples/noisy.ply" --view 1,1,1
 fi
+
+# A sheet of technical drawing (third angle, one scale for front, top and side, scale bar) and a pen-plotter file.
+if [[ -f $data/fandisk.off ]]; then
+  echo "gallery: fandisk sheet" >&2
+  "$bin" -q draw "$data/fandisk.off" --size 400x400 --sheet third --scale-bar --no-hatching -o "$out/fandisk_sheet.png" \
+    -o "$out/fandisk_sheet.svg"
+fi
+echo "gallery: sample plotter" >&2
+"$bin" -q draw data/bunny.ply --azimuth -35 --elevation 15 --size "$size" --plotter --page-width-mm 200 \
+  -o "$out/sample_plotter.svg" -o "$out/sample_plotter.png"
