@@ -350,12 +350,13 @@ void add_draw_options(CLI::App* cmd, DrawOptions& o) {
                 "Pen-plotter output: centre-lines of one width, no grey fills; strokes merged where their ends meet, "
                 "collinear hatching drawn once, dabs left out, each layer sorted to shorten pen-up travel")
       ->group(out);
-  CLI::Option* pen_mm = cmd->add_option("--pen-width-mm", o.render.pen_width_mm, "Plotter line width, page millimetres")
+  CLI::Option* pen_mm = cmd->add_option("--pen-width-mm,--pen-width", o.render.pen_width_mm,
+                                        "Plotter line width, page millimetres")
                             ->capture_default_str()
                             ->check(CLI::PositiveNumber)
                             ->group(out);
-  cmd->add_option("--pen-width", o.render.pen_width,
-                  "Plotter line width in image pixels (the old unit, kept for old scripts: prefer --pen-width-mm)")
+  cmd->add_option("--pen-width-px", o.render.pen_width,
+                  "Plotter line width in image pixels (what --pen-width meant before it took millimetres)")
       ->check(CLI::PositiveNumber)
       ->excludes(pen_mm)
       ->group(out);

@@ -41,12 +41,12 @@ constexpr std::array kValueFlags = {
     "--min-length-abs", "--smooth", "--smooth-weight", "--z-max", "--contour-radius", "--contour-connection",
     "--contour-persistence", "--self-offset", "--hidden-lines", "--thickness", "--rho-min", "--rho-max", "--cofi",
     "--shadow", "--light", "--light-elevation", "--light-azimuth", "--shadow-d", "--shadow-k", "--hatch-spacing",
-    "--pen-width", "--page-width-mm", "--k", "--threads"};
+    "--pen-width", "--pen-width-px", "--page-width-mm", "--scale", "--units", "--sheet", "--k", "--threads"};
 constexpr std::array kSwitches = {
     "--timings", "--perspective", "--recompute-normals", "--keep-outliers", "--no-denoise", "--no-suppression",
     "--no-interior-contours", "--no-uneven-spacing", "--no-local-offset", "--no-visibility-lift", "--no-brush",
     "--light-fixed", "--no-shade-blocks", "--shadow-over-background", "--no-contours", "--no-ridges", "--no-valleys",
-    "--no-hatching", "--plotter", "--ascii", "--no-recentre", "--help", "--version"};
+    "--no-hatching", "--plotter", "--scale-bar", "--north-arrow", "--ascii", "--no-recentre", "--help", "--version"};
 // Values worth trying: edges of the ranges, non-finite numbers, vectors, enum names, output names.
 constexpr std::array kValues = {
     "nan", "inf", "-inf", "-1", "0", "1", "2", "3", "0.5", "0.999", "1e308", "1e-30", "1e309", "16", "256", "257",

@@ -234,7 +234,7 @@ void validate_shadow(const stylize::ShadowOptions& s) {
 }
 
 void validate_render(const render::RenderOptions& r) {
-  if (r.pen_width) positive("--pen-width", *r.pen_width, 1e3);
+  if (r.pen_width) positive("--pen-width-px", *r.pen_width, 1e3);
   positive("--pen-width-mm", r.pen_width_mm, 100);
   positive("render.default_width", r.default_width, 1e3);
   non_negative("render.width_step", r.width_step, 1e3);

@@ -71,11 +71,17 @@ TEST_F(CliDraw, StagesWritesThePapersFigure19Columns) {
 
 TEST_F(CliDraw, PlotterSvgHasOnlyCentreLines) {
   const CommandRun r =
-      run("draw " PCSKETCH_DATA "/bunny.ply --size 256x256 --plotter --pen-width 0.5 -o " + path("p.svg") + " -q");
+      run("draw " PCSKETCH_DATA "/bunny.ply --size 256x256 --plotter --pen-width-px 0.5 -o " + path("p.svg") + " -q");
   ASSERT_EQ(r.status, 0) << r.err;
   const std::string svg = slurp(path("p.svg"));
   EXPECT_EQ(svg.find("stroke-width=\"1"), std::string::npos);
   EXPECT_NE(svg.find("stroke-width=\"0.5\""), std::string::npos);
+  // --pen-width is in page millimetres: 0.8 mm on a 128 mm page of 256 px is 1.6 px.
+  ASSERT_EQ(run("-q draw " PCSKETCH_DATA "/bunny.ply --size 256x256 --plotter --pen-width 0.8 --page-width-mm 128 -o " +
+                path("mm.svg"))
+                .status,
+            0);
+  EXPECT_NE(slurp(path("mm.svg")).find("stroke-width=\"1.6\""), std::string::npos);
 }
 
 TEST_F(CliDraw, MalformedInputExitsWithTwo) {

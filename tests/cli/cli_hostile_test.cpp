@@ -100,6 +100,7 @@ TEST_F(CliHostile, EveryNumericFlagWithNanInfNegativeZeroAndHuge) {
                                           "--fusion-min-stretch",
                                           "--min-stroke-length",
                                           "--pen-width",
+                                          "--pen-width-px",
                                           "--pen-width-mm",
                                           "--min-stroke-mm",
                                           "--merge-tolerance-mm",

@@ -136,7 +136,7 @@ TEST_F(CliViews, PlotterRecordsPenTravelInTheSvgDesc) {
   EXPECT_LE(after["strokes"].get<int>(), before["strokes"].get<int>());
   // The pen is 0.3 mm by default: 0.3 mm on a 200 mm page of 256 px is 0.38 px.
   EXPECT_NE(svg.find("stroke-width=\"0.38\""), std::string::npos);
-  const CommandRun both = run("draw " + kBunny + " -o " + path("x.svg") + " --pen-width 1 --pen-width-mm 0.3");
+  const CommandRun both = run("draw " + kBunny + " -o " + path("x.svg") + " --pen-width-px 1 --pen-width-mm 0.3");
   EXPECT_EQ(both.status, 1);
   EXPECT_NE(both.err.find("--pen-width"), std::string::npos) << both.err;
 }
