@@ -241,8 +241,10 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   }
   differential::SurfaceOptions surface_options = options.surface;
   if (!surface_options.progress) surface_options.progress = options.progress;
+  // The analysis's kd-tree, reused by the border search (a second build is the largest serial step at 1M points).
+  std::optional<neighbourhood::KdTree> tree;
   try {
-    p.surface = differential::analyse_surface(p.cloud, surface_options);
+    p.surface = differential::analyse_surface(p.cloud, surface_options, &tree);
   } catch (const Error& e) {
     // analyse_surface rejects clouds without 3 distinct points: nothing to draw, but not an error of the input.
     p.warnings.push_back(std::string("cannot analyse the cloud (") + e.what() + "): the drawing is empty");
@@ -264,7 +266,7 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
 
   auto start = Clock::now();
   p.boundary = features::find_boundaries(p.cloud.positions, p.cloud.normals, p.surface.neighbourhoods,
-                                         p.surface.spacing, options.boundary);
+                                         p.surface.spacing, options.boundary, tree ? &*tree : nullptr);
   p.timings.boundary = seconds_since(start);
 
   start = Clock::now();

@@ -84,7 +84,8 @@ void remove_outliers(PointCloud& cloud, Surface& surface, std::optional<neighbou
 
 }  // namespace
 
-Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options) {
+Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
+                        std::optional<neighbourhood::KdTree>* tree_out) {
   if (!has_three_distinct(cloud.positions))
     throw Error("surface analysis: the cloud has " + std::to_string(cloud.size()) +
                 " points but fewer than 3 distinct positions; nothing to analyse");
@@ -175,6 +176,7 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options) {
                               with_progress(options.curvature, options.progress));
   });
   append(surface.warnings, surface.curvature.warnings);
+  if (tree_out && !surface.denoised) *tree_out = std::move(tree);
   return surface;
 }
 

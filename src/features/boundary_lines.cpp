@@ -118,7 +118,8 @@ class Cone {
 /// the cone), 0 elsewhere. Candidates in parallel, then the neighbours' neighbours, then a radius query for the
 /// candidates they leave (where the density changes, the two rings may stay on the dense side).
 std::vector<std::uint8_t> border_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
-                                        const neighbourhood::Neighbourhoods& nbh, const BoundaryOptions& o) {
+                                        const neighbourhood::Neighbourhoods& nbh, const BoundaryOptions& o,
+                                        const neighbourhood::KdTree* given_tree) {
   const std::size_t n = positions.size();
   std::vector<Vec3f> bisector(n, Vec3f::Zero());
   const Cone cone(positions, normals, nbh, o);
@@ -136,7 +137,8 @@ std::vector<std::uint8_t> border_points(const std::vector<Vec3f>& positions, con
   for (std::uint32_t i = 0; i < n; ++i)
     if (open[i]) left.push_back(i);
   if (left.empty()) return open;
-  const neighbourhood::KdTree tree(positions);
+  std::optional<neighbourhood::KdTree> own_tree;
+  const neighbourhood::KdTree& tree = given_tree ? *given_tree : own_tree.emplace(positions);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, left.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<std::uint32_t> found;
     std::vector<float> distances;
@@ -205,8 +207,9 @@ nlohmann::json BoundaryOptions::to_json() const {
 
 Boundary find_boundaries(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                          const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
-                         const BoundaryOptions& options) {
+                         const BoundaryOptions& options, const neighbourhood::KdTree* tree) {
   const std::size_t n = positions.size();
+  if (tree && tree->size() != n) throw Error("boundary: the kd-tree does not index these points");
   if (normals.size() != n || neighbourhoods.size() != n)
     throw Error("boundary: " + std::to_string(normals.size()) + " normals and " +
                 std::to_string(neighbourhoods.size()) + " neighbourhoods for " + std::to_string(n) + " points");
@@ -220,7 +223,7 @@ Boundary find_boundaries(const std::vector<Vec3f>& positions, const std::vector<
                 "confirm factor ≥ 1, edge band in (0, 1], minimum size ≥ 0)");
   Boundary result;
   if (!options.enabled || n == 0 || neighbourhoods.k == 0) return result;
-  result.border = border_points(positions, normals, neighbourhoods, options);
+  result.border = border_points(positions, normals, neighbourhoods, options, tree);
 
   const std::vector<std::uint8_t> drawn =
       drawn_sets(positions, neighbourhoods, result.border, options.min_size_factor * spacing, result.small_holes);

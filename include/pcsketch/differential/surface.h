@@ -62,7 +62,11 @@ struct Surface {
 /// Runs every view-independent step on `cloud`, which it reorders, rids of outliers (moved to Surface::outliers),
 /// denoises when noisy and gives normals (oriented) in place.
 /// Collinear or coplanar clouds get a defined result (arbitrary perpendicular normals, zero curvature) and warnings.
+/// @param tree_out when given, receives the kd-tree over `cloud.positions` as left (the analysis builds one), so that
+///        later stages need not build it again; left empty when the points were denoised (the tree then indexes the
+///        raw points). It refers to `cloud.positions`, which must stay where it is while the tree is used.
 /// @throws pcsketch::Error for a cloud with fewer than 3 distinct points (nothing to call a surface)
-Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options = {});
+Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options = {},
+                        std::optional<neighbourhood::KdTree>* tree_out = nullptr);
 
 }  // namespace pcsketch::differential

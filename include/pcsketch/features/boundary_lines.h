@@ -70,9 +70,11 @@ struct Boundary {
 /// @param normals #P unit normals (their signs do not matter)
 /// @param neighbourhoods the shared k-NN of `positions`
 /// @param spacing mean spacing h, model units (> 0)
+/// @param tree a kd-tree over `positions` to reuse for the confirmation's radius queries; null: one is built when
+///        needed
 /// @throws pcsketch::Error if the sizes disagree, h is not positive or an option is out of range.
 Boundary find_boundaries(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                          const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
-                         const BoundaryOptions& options = {});
+                         const BoundaryOptions& options = {}, const neighbourhood::KdTree* tree = nullptr);
 
 }  // namespace pcsketch::features
