@@ -11,6 +11,8 @@
 
 #include "pcsketch/core/error.h"
 #include "core/angular_gap.h"
+#include "core/parallel_chunks.h"
+#include "core/progress.h"
 #include "point_grid.h"
 
 namespace pcsketch::view {
@@ -113,7 +115,7 @@ struct Walker {
 /// Chains the outline's boundary points in the image plane (forward with the empty side on the right, then
 /// backward from the seed when the outline did not close).
 std::vector<Polyline> trace_outline(const ContourPoints& cp, const std::vector<Vec3f>& positions,
-                                    const ContourOptions& o) {
+                                    const ContourOptions& o, pcsketch::detail::ProgressSteps& steps) {
   const std::size_t nb = cp.boundary.size();
   std::vector<Vec2f> pts(nb);
   std::vector<float> scale(nb);
@@ -181,7 +183,9 @@ std::vector<Polyline> trace_outline(const ContourPoints& cp, const std::vector<V
   });
 
   std::vector<Polyline> lines;
-  for (const std::uint32_t seed : seeds) {
+  for (std::size_t s = 0; s < nb; ++s) {
+    steps.at(s);
+    const std::uint32_t seed = seeds[s];
     if (walker.used[seed]) continue;
     walker.used[seed] = 1;
     const auto [chain, closed] = walker.grow_both_ways(seed, heading_for(cp.outward[seed], +1.f), chooser(+1.f),
@@ -233,7 +237,8 @@ std::vector<char> covered_by_outline(const std::vector<Vec3f>& rim, const std::v
 /// Chains the interior rim samples in 3D with the paper's rule (nearest ahead within z_max of the direction line),
 /// after dropping those the outline already covers.
 std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<Polyline>& outline, float h,
-                                     const ContourOptions& o, float min_length_factor) {
+                                     const ContourOptions& o, float min_length_factor,
+                                     pcsketch::detail::ProgressSteps& steps) {
   const float dedupe = o.interior_dedupe_factor * h;
   const std::vector<char> covered = covered_by_outline(cp.rim, outline, h, dedupe);
   std::vector<Vec3f> rim;
@@ -273,6 +278,7 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
 
   std::vector<Polyline> lines;
   for (std::uint32_t seed = 0; seed < rim.size(); ++seed) {
+    steps.at(cp.boundary.size() + seed);  // after the outline's seeds
     if (walker.used[seed]) continue;
     walker.used[seed] = 1;
     // Paper: the first direction points to p_front, the nearest unused point.
@@ -433,11 +439,11 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
     };
     // Queries run in the grid's cell order so that neighbouring queries scan the same cells (cache).
     const std::vector<std::uint32_t>& grid_order = grid.order();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, valid.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+    pcsketch::detail::parallel_chunks(valid.size(), o.progress, "contour points", [&](std::size_t begin, std::size_t end) {
       std::vector<std::pair<float, std::uint32_t>> near;
       std::vector<Vec2f> dirs;
       std::vector<float> angles;
-      for (std::size_t g = range.begin(); g != range.end(); ++g) {
+      for (std::size_t g = begin; g != end; ++g) {
         const std::size_t v = grid_order[g];
         const float r = o.radius_factor * cp.spacing_px[valid[v]];
         if (use_3d_neighbours && surrounded(valid[v], dirs)) continue;
@@ -552,10 +558,13 @@ ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec
                               const ContourOptions& options, bool denoised) {
   if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("contours: the mean spacing h must be positive");
   ContourLines lines;
-  lines.outline = trace_outline(points, positions, options);
+  pcsketch::detail::ProgressSteps steps(options.progress, "contour connection",
+                                        points.boundary.size() + (options.interior ? points.rim.size() : 0));
+  lines.outline = trace_outline(points, positions, options, steps);
   if (options.interior)
     lines.interior = trace_interior(points, lines.outline, spacing, options,
-                                    denoised ? options.denoised_min_length_factor : options.min_length_factor);
+                                    denoised ? options.denoised_min_length_factor : options.min_length_factor, steps);
+  steps.finish();
   return lines;
 }
 
