@@ -301,6 +301,9 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
 
   p.features =
       features::extract_ridge_valley_lines(p.cloud, p.surface, with_progress(options.features, options.progress));
+  // Only the lines read the per-point curvature: 32 B a point freed before the scene and the views (the peak).
+  for (std::vector<float>* v : {&p.surface.curvature.k1, &p.surface.curvature.k2}) *v = std::vector<float>();
+  for (std::vector<Vec3f>* v : {&p.surface.curvature.dir1, &p.surface.curvature.dir2}) *v = std::vector<Vec3f>();
   p.timings.ridge_valley_points = p.features.timings.detection;
   p.timings.ridge_valley_connection = p.features.timings.tracing + p.features.timings.joining;
   p.warnings.insert(p.warnings.end(), p.features.warnings.begin(), p.features.warnings.end());

@@ -309,7 +309,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       throw Error("contours: interior contours need the cloud's neighbourhoods (run analyse_surface)");
   }
   ContourPoints cp;
-  const std::vector<float> unit = spacing_units(neighbourhoods, spacing, n, o.adaptive_spacing);
+  std::vector<float> unit = spacing_units(neighbourhoods, spacing, n, o.adaptive_spacing);
   cp.projected.resize(n);
   cp.spacing_px.resize(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -320,6 +320,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       cp.spacing_px[i] = in_front && cp.projected[i].allFinite() ? unit[i] / camera.units_per_pixel(depth) : 0.f;
     }
   });
+  unit = std::vector<float>();  // freed before the image-plane grid, the peak of a draw
 
   // Points behind a perspective eye are left out of the image-plane analysis.
   std::vector<std::uint32_t> valid;
