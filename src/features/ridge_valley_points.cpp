@@ -93,8 +93,7 @@ DetectionResult detect_ridge_valley_points(const std::vector<Vec3f>& points, con
   const bool suppress = salient && options.non_maximum_suppression;
   const float cone_cos = std::cos(options.suppression_cone_deg * std::numbers::pi_v<float> / 180.f);
   result.labels.assign(n, PointLabel::None);
-  pcsketch::detail::parallel_chunks(n, progress, "ridge/valley detection", [&](std::size_t begin,
-                                                                                       std::size_t end) {
+  pcsketch::detail::parallel_chunks(n, progress, "ridge/valley detection", [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i != end; ++i) {
       const float ki = k[i];
       PointLabel label = PointLabel::None;

@@ -23,11 +23,9 @@ namespace fs = std::filesystem;
 
 /// Every stage a draw of the open box reports, in pipeline order.
 const std::vector<std::string> kStages = {
-    "read",           "reorder",       "neighbourhoods",         "outliers",
-    "normals",        "orientation",   "curvature",              "ridge/valley detection",
-    "ridge/valley tracing", "ridge/valley joining", "boundaries", "scene",
-    "contour points", "contour connection", "visibility",        "shadows",
-    "writing"};
+    "read", "reorder", "neighbourhoods", "outliers", "normals", "orientation", "curvature",
+    "ridge/valley detection", "ridge/valley tracing", "ridge/valley joining", "boundaries", "scene",
+    "contour points", "contour connection", "visibility", "shadows", "writing"};
 
 using Reports = std::vector<std::pair<std::string, double>>;
 
@@ -112,9 +110,10 @@ TEST_F(Progress, ReturningFalseInAnyStageThrowsCancelledAndWritesNothing) {
 
 TEST_F(Progress, CancellingAtTheEndOfWritingLeavesNoFile) {
   const fs::path out = dir_ / "late";
-  EXPECT_THROW(draw_and_write([](std::string_view stage, double fraction) { return stage != "writing" || fraction < 1; },
-                              out),
-               Cancelled);
+  const ProgressFn stop_when_written = [](std::string_view stage, double fraction) {
+    return stage != "writing" || fraction < 1;
+  };
+  EXPECT_THROW(draw_and_write(stop_when_written, out), Cancelled);
   EXPECT_TRUE(fs::is_empty(out));
 }
 
