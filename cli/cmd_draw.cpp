@@ -125,7 +125,7 @@ void draw_one_view(const DrawArgs& args, const Prepared& prepared, const NamedCa
     const auto start = Clock::now();
     std::vector<fs::path> paths;
     for (const std::string& path : args.outputs) paths.push_back(view_path(path, v.name));
-    render::write_drawings(result.drawing, paths, options.render);
+    render::write_drawings(result.drawing, paths, options.render, options.progress);
     result.timings.drawing += seconds_since(start);
     timings += result.timings;
   }
@@ -157,6 +157,7 @@ void run_draw(DrawArgs& args, const GlobalOptions& global) {
 
   DrawOptions& options = args.options;
   options.progress = make_progress(global);
+  args.read.progress = options.progress;
   Timings timings;
   auto start = Clock::now();
   io::ReadResult read = io::read_point_cloud(args.input, args.read);

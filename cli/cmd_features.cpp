@@ -122,7 +122,10 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   checked.max_memory_gb = args.max_memory_gb;
   validate(checked);
   check_outputs(args);
-  io::ReadResult read = io::read_point_cloud(args.in_path, args.read);
+  const ProgressFn progress = make_progress(global);
+  io::ReadOptions read_options = args.read;
+  read_options.progress = progress;
+  io::ReadResult read = io::read_point_cloud(args.in_path, read_options);
   io::check_scale(read.cloud, args.in_path);
   validate_memory(point_bytes(args.surface, read.cloud.size()), args.max_memory_gb,
                   args.in_path + ": " + std::to_string(read.cloud.size()) + " points (--neighbours " +
@@ -130,10 +133,12 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   print_warnings(global, read.warnings);
   PointCloud& cloud = read.cloud;
   differential::SurfaceOptions surface_options = args.surface;
-  surface_options.progress = make_progress(global);
+  surface_options.progress = progress;
   const differential::Surface surface = differential::analyse_surface(cloud, surface_options);
   print_warnings(global, surface.warnings);
-  const features::RidgeValleyLines result = features::extract_ridge_valley_lines(cloud, surface, args.features);
+  features::RidgeValleyOptions features_options = args.features;
+  features_options.progress = progress;
+  const features::RidgeValleyLines result = features::extract_ridge_valley_lines(cloud, surface, features_options);
   print_warnings(global, result.warnings);
 
   // Written in the file's point order, so the scalar fields line up with the input cloud; outliers get label 3.

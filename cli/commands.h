@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <string>
 
 #include "pcsketch/core/report.h"
 
@@ -14,15 +15,19 @@ enum ExitCode : int {
   kUsage = 1,      ///< bad command line (CLI11 prints the reason)
   kBadInput = 2,   ///< malformed, truncated or hostile input, or an impossible request: one line on stderr
   kInternal = 3,   ///< a bug: an unexpected exception
+  kCancelled = 130,  ///< stopped by SIGINT or SIGTERM (as a shell reports an interrupted command): no output written
 };
 
 /// Options every subcommand shares.
 struct GlobalOptions {
   bool quiet = false;   ///< no progress, no warnings
   int threads = 0;      ///< 0 = all cores
+  std::string cancel_at;  ///< hidden, for tests: act as if interrupted when this stage reports its end
 };
 
-/// Progress line on stderr: only when stderr is a terminal, not quiet, and a stage has run for over a second.
+/// The command's progress callback: it stops the command (pcsketch::Cancelled) once SIGINT or SIGTERM came (see
+/// install_interrupt_handlers) and draws a progress line on stderr when stderr is a terminal, not quiet, and a stage
+/// has run for over a second.
 ProgressFn make_progress(const GlobalOptions& global);
 /// Prints each warning as "pcsketch: warning: …" unless quiet.
 void print_warnings(const GlobalOptions& global, const Warnings& warnings);

@@ -2,4 +2,7 @@
 
 #include "run_cli.h"
 
-int main(int argc, char** argv) { return pcsketch::cli::run_cli(argc, argv); }
+int main(int argc, char** argv) {
+  pcsketch::cli::install_interrupt_handlers();
+  return pcsketch::cli::run_cli(argc, argv);
+}

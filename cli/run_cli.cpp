@@ -21,6 +21,8 @@ int run_cli(int argc, const char* const* argv) {
   app.add_flag("-q,--quiet", global.quiet, "No progress line and no warnings on stderr");
   app.add_option("--threads", global.threads, "Worker threads (0 = all cores); results do not depend on it")
       ->check(CLI::NonNegativeNumber);
+  // Hidden (no group): lets the tests stop a command at the end of any stage without a signal.
+  app.add_option("--cancel-at", global.cancel_at, "Act as if interrupted when this stage reports its end")->group("");
 
   add_info_command(app, global);
   add_sample_command(app, global);
@@ -41,6 +43,9 @@ int run_cli(int argc, const char* const* argv) {
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? kOk : kUsage;
+  } catch (const Cancelled&) {
+    std::cerr << "pcsketch: cancelled\n";
+    return kCancelled;
   } catch (const OptionError& e) {
     std::cerr << "pcsketch: error: " << e.what() << "\n";
     return kUsage;

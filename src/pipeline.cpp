@@ -4,6 +4,7 @@
 #include <chrono>
 #include <nlohmann/json.hpp>
 
+#include "core/progress.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/stylize/thickness.h"
 #include "pcsketch/validate.h"
@@ -13,6 +14,7 @@ namespace pcsketch {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using pcsketch::detail::with_progress;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -161,7 +163,7 @@ Drawing style(const Prepared& prepared, const view::ViewResult& view, const Styl
   timings.drawing += seconds_since(start);
   if (request.lines.hatching && options.shadow.mode != stylize::ShadowMode::None) {
     start = Clock::now();
-    add_shadows(prepared, view, request.lines, options.shadow, d, warnings);
+    add_shadows(prepared, view, request.lines, with_progress(options.shadow, options.progress), d, warnings);
     timings.shadows += seconds_since(start);
   }
   return d;
@@ -198,7 +200,7 @@ view::ViewResult compute_view(const Prepared& prepared, const view::Camera& came
   std::vector<Polyline> lines = prepared.features.lines;
   lines.insert(lines.end(), prepared.boundary.lines.begin(), prepared.boundary.lines.end());
   view::ViewResult v = view::compute_view(prepared.cloud, prepared.surface, *prepared.scene, lines, camera,
-                                          options.view, prepared.boundary.border);
+                                          with_progress(options.view, options.progress), prepared.boundary.border);
   timings.contour_points += v.timings.contour_points;
   timings.contour_connection += v.timings.contour_connection;
   timings.visibility += v.timings.visibility;
@@ -239,12 +241,10 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
                          " points, too few to analyse: the drawing is empty");
     return p;
   }
-  differential::SurfaceOptions surface_options = options.surface;
-  if (!surface_options.progress) surface_options.progress = options.progress;
   // The analysis's kd-tree, reused by the border search (a second build is the largest serial step at 1M points).
   std::optional<neighbourhood::KdTree> tree;
   try {
-    p.surface = differential::analyse_surface(p.cloud, surface_options, &tree);
+    p.surface = differential::analyse_surface(p.cloud, with_progress(options.surface, options.progress), &tree);
   } catch (const Error& e) {
     // analyse_surface rejects clouds without 3 distinct points: nothing to draw, but not an error of the input.
     p.warnings.push_back(std::string("cannot analyse the cloud (") + e.what() + "): the drawing is empty");
@@ -259,20 +259,25 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   p.timings.curvature = st.curvature;
   p.warnings.insert(p.warnings.end(), p.surface.warnings.begin(), p.surface.warnings.end());
 
-  p.features = features::extract_ridge_valley_lines(p.cloud, p.surface, options.features);
+  p.features =
+      features::extract_ridge_valley_lines(p.cloud, p.surface, with_progress(options.features, options.progress));
+  // Only the lines read the per-point curvature: 32 B a point freed before the scene and the views (the peak).
+  for (std::vector<float>* v : {&p.surface.curvature.k1, &p.surface.curvature.k2}) *v = std::vector<float>();
+  for (std::vector<Vec3f>* v : {&p.surface.curvature.dir1, &p.surface.curvature.dir2}) *v = std::vector<Vec3f>();
   p.timings.ridge_valley_points = p.features.timings.detection;
   p.timings.ridge_valley_connection = p.features.timings.tracing + p.features.timings.joining;
   p.warnings.insert(p.warnings.end(), p.features.warnings.begin(), p.features.warnings.end());
 
   auto start = Clock::now();
   p.boundary = features::find_boundaries(p.cloud.positions, p.cloud.normals, p.surface.neighbourhoods,
-                                         p.surface.spacing, options.boundary, tree ? &*tree : nullptr);
+                                         p.surface.spacing, with_progress(options.boundary, options.progress),
+                                         tree ? &*tree : nullptr);
   p.timings.boundary = seconds_since(start);
 
   start = Clock::now();
   p.local_spacing = view::local_spacing(p.surface.neighbourhoods);
   // The scene of view::build_surface_scene, with the radii kept for shadow splatting.
-  p.scene.emplace(p.cloud.positions, p.cloud.normals, p.local_spacing, options.scene);
+  p.scene.emplace(p.cloud.positions, p.cloud.normals, p.local_spacing, with_progress(options.scene, options.progress));
   p.timings.scene = seconds_since(start);
   return p;
 }

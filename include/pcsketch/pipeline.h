@@ -100,7 +100,9 @@ struct Timings {
 /// Everything view-independent, computed once per cloud.
 struct Prepared {
   PointCloud cloud;                      ///< reordered, with oriented normals
-  differential::Surface surface;         ///< neighbourhoods, spacing h, curvature
+  /// Neighbourhoods, spacing h, curvature: its per-point arrays (k1, k2, dir1, dir2) are emptied once the lines are
+  /// extracted, 32 B a point the views do not need (call differential::analyse_surface to keep them).
+  differential::Surface surface;
   features::RidgeValleyLines features;   ///< ridge and valley lines
   features::Boundary boundary;           ///< border points and lines (open scans)
   std::vector<float> local_spacing;      ///< #P disc radii of the scene before its factor (view::local_spacing)

@@ -10,6 +10,7 @@
 #include <limits>
 #include <numeric>
 
+#include "core/parallel_chunks.h"
 #include "core/union_find.h"
 #include "pcsketch/core/error.h"
 
@@ -79,8 +80,8 @@ OutlierResult find_outliers(const std::vector<Vec3f>& points, const neighbourhoo
   // Off-surface points count as sparse: they may neither be dense nor lend a border point their cluster.
   if (k >= 3) {
     std::vector<float> offset(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-      for (std::size_t i = r.begin(); i != r.end(); ++i) offset[i] = plane_offset(points, nbh, i, k);
+    pcsketch::detail::parallel_chunks(n, options.progress, "outliers", [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i != end; ++i) offset[i] = plane_offset(points, nbh, i, k);
     });
     const float off_limit = std::max(options.offset_factor * m, 6.f * median(offset));
     for (std::size_t i = 0; i < n; ++i)

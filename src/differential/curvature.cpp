@@ -178,6 +178,8 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   const std::size_t stride = std::max<std::size_t>(1, n / 16384);
 
   std::optional<neighbourhood::KdTree> own_tree;
+  // A second pass reports under its own name: one stage's fraction never starts again at 0.
+  std::string_view wide_stage = "curvature";
   const auto store = [&](std::size_t i, const PointFit& fit) {
     result.k1[i] = fit.k1;
     result.k2[i] = fit.k2;
@@ -188,6 +190,7 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   // Fits over the shared neighbourhoods (the first pass also takes the inner residuals).
   const auto run_shared = [&](std::size_t k) {
     result.fit_neighbours = k;
+    wide_stage = "curvature, wider fits";
     pcsketch::detail::parallel_chunks(n, options.progress, "curvature", [&](std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) {
         const bool sampled = !inner_residual.empty() && i % stride == 0;
@@ -205,7 +208,7 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
     };
     result.point_fits = detail::fit_groups(
         points, normals, neighbourhoods, tree,
-        {.fit = k, .noise_sigma = result.noise_sigma, .progress = options.progress}, point_fit, result);
+        {.fit = k, .noise_sigma = result.noise_sigma, .progress = options.progress, .stage = wide_stage}, point_fit, result);
   };
 
   const std::size_t shared = neighbourhoods.k;

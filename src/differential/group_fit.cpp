@@ -252,7 +252,7 @@ std::size_t fit_groups(const std::vector<Vec3f>& points, const std::vector<Vec3f
   const Groups groups = make_groups(points, shared, options.fit, options.reach, kMaxGroup);
   const std::size_t count = groups.size();
   std::vector<char> fell_back(count, 0);
-  pcsketch::detail::parallel_chunks(count, options.progress, "curvature", [&](std::size_t begin, std::size_t end) {
+  pcsketch::detail::parallel_chunks(count, options.progress, options.stage, [&](std::size_t begin, std::size_t end) {
     GroupFitter fitter{points,    normals, shared, tree, options, point_fit, result,
                        GroupNeighbours(points, shared, tree, options.fit), {}, {}};
     for (std::size_t g = begin; g < end; ++g) fell_back[g] = fitter.run(groups.of(g));

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -24,6 +25,7 @@ struct GroupFitOptions {
   double misfit_factor = 3;     ///< cubic residual variance over this × σ̂²: fit each point on its own
   double cubic_shrink = 4;      ///< the cubic terms count in full only where they remove ≫ this × σ̂²
   ProgressFn progress;
+  std::string_view stage = "curvature";  ///< the progress stage name
 };
 
 /// Fits point i over the given neighbours (i excluded) and stores its curvature.

@@ -129,6 +129,7 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
   if (normals.size() != n)
     throw Error("orient normals: " + std::to_string(normals.size()) + " normals for " + std::to_string(n) + " points");
   const ProgressReporter report(options.progress, "orientation");
+  report(0.0);
   OrientResult result;
   if (n == 0) return result;
   const std::size_t stride = neighbourhoods.k;

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "core/progress.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/neighbourhood/spacing.h"
 #include "pcsketch/neighbourhood/spatial_order.h"
@@ -14,6 +15,8 @@
 namespace pcsketch::differential {
 
 namespace {
+
+using pcsketch::detail::with_progress;
 
 /// Seconds spent in `step()`, added to `seconds`.
 template <class Step>
@@ -50,12 +53,6 @@ bool normalise(std::vector<Vec3f>& normals) {
   return true;
 }
 
-template <class Options>
-Options with_progress(Options options, const ProgressFn& progress) {
-  if (!options.progress) options.progress = progress;
-  return options;
-}
-
 void append(Warnings& to, const Warnings& from) { to.insert(to.end(), from.begin(), from.end()); }
 
 /// Moves the outliers of `cloud` to surface.outliers and recomputes the tree and neighbourhoods of what is left
@@ -64,7 +61,10 @@ void remove_outliers(PointCloud& cloud, Surface& surface, std::optional<neighbou
                      const SurfaceOptions& options) {
   SurfaceTimings& t = surface.timings;
   const clean::OutlierResult found =
-      timed(t.outliers, [&] { return clean::find_outliers(cloud.positions, surface.neighbourhoods, options.outliers); });
+      timed(t.outliers, [&] {
+        return clean::find_outliers(cloud.positions, surface.neighbourhoods,
+                                    with_progress(options.outliers, options.progress));
+      });
   if (found.removed() == 0) return;
   timed(t.outliers, [&] {
     std::vector<std::uint32_t> kept, removed;
@@ -91,9 +91,15 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
                 " points but fewer than 3 distinct positions; nothing to analyse");
   Surface surface;
   SurfaceTimings& t = surface.timings;
-  if (options.reorder) timed(t.reorder, [&] { neighbourhood::reorder_spatially(cloud); });
+  if (options.reorder) {
+    const ProgressReporter report(options.progress, "reorder");
+    report(0.0);
+    timed(t.reorder, [&] { neighbourhood::reorder_spatially(cloud); });
+    report(1.0);
+  }
 
   std::optional<neighbourhood::KdTree> tree;
+  ProgressReporter(options.progress, "neighbourhoods")(0.0);  // the tree's build is part of the stage
   timed(t.kd_tree, [&] { tree.emplace(cloud.positions); });
   surface.neighbourhoods = timed(t.neighbourhoods, [&] {
     return neighbourhood::compute_neighbourhoods(*tree, cloud.positions,

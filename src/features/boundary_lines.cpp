@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/angular_gap.h"
+#include "core/parallel_chunks.h"
 #include "core/union_find.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
@@ -124,10 +125,11 @@ std::vector<std::uint8_t> border_points(const std::vector<Vec3f>& positions, con
   std::vector<Vec3f> bisector(n, Vec3f::Zero());
   const Cone cone(positions, normals, nbh, o);
   std::vector<std::uint8_t> open(n, 0);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 2048), [&](const tbb::blocked_range<std::size_t>& r) {
+  // The candidates are most of the stage's time: their loop reports its progress.
+  pcsketch::detail::parallel_chunks(n, o.progress, "boundaries", [&](std::size_t begin, std::size_t end) {
     std::vector<Vec2f> dirs;
     std::vector<float> angles;
-    for (std::size_t i = r.begin(); i != r.end(); ++i)
+    for (std::size_t i = begin; i != end; ++i)
       if (const auto b = candidate_gap(positions, normals, nbh, i, o, dirs, angles)) {
         bisector[i] = *b;
         open[i] = !cone.filled_nearby(i, *b);

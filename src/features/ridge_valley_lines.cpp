@@ -23,17 +23,21 @@ RidgeValleyLines extract_ridge_valley_lines(const PointCloud& cloud, const diffe
   RidgeValleyLines result;
   auto start = std::chrono::steady_clock::now();
   result.detection = detect_ridge_valley_points(cloud.positions, surface.curvature, surface.neighbourhoods,
-                                                surface.spacing, options.detection);
+                                                surface.spacing, options.detection, options.progress);
   result.timings.detection = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
   TraceResult traced = trace_lines(cloud.positions, result.detection.labels, result.detection.feature_curvature,
-                                   surface.spacing, options.tracing);
+                                   surface.spacing, options.tracing, options.progress);
   result.timings.tracing = seconds_since(start);
   result.radius = traced.radius;
 
   start = std::chrono::steady_clock::now();
+  // Joining passes over line ends only (thousands, not millions): reported at its start and end.
+  const ProgressReporter report_joining(options.progress, "ridge/valley joining");
+  report_joining(0.0);
   JoinResult joined = join_lines(std::move(traced.lines), traced.radius, surface.spacing, options.joining);
+  report_joining(1.0);
   result.timings.joining = seconds_since(start);
   result.lines = std::move(joined.lines);
   const DetectionResult& d = result.detection;

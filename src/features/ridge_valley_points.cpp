@@ -9,6 +9,7 @@
 #include <numbers>
 #include <string>
 
+#include "core/parallel_chunks.h"
 #include "pcsketch/core/error.h"
 
 namespace pcsketch::features {
@@ -44,7 +45,7 @@ const Vec3f& feature_direction(const differential::Curvature& curvature, std::si
 
 DetectionResult detect_ridge_valley_points(const std::vector<Vec3f>& points, const differential::Curvature& curvature,
                                            const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
-                                           const DetectionOptions& options) {
+                                           const DetectionOptions& options, const ProgressFn& progress) {
   check_options(options);
   const std::size_t n = points.size();
   if (curvature.k1.size() != n || curvature.k2.size() != n || curvature.dir1.size() != n || curvature.dir2.size() != n)
@@ -92,8 +93,8 @@ DetectionResult detect_ridge_valley_points(const std::vector<Vec3f>& points, con
   const bool suppress = salient && options.non_maximum_suppression;
   const float cone_cos = std::cos(options.suppression_cone_deg * std::numbers::pi_v<float> / 180.f);
   result.labels.assign(n, PointLabel::None);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const auto& range) {
-    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+  pcsketch::detail::parallel_chunks(n, progress, "ridge/valley detection", [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i != end; ++i) {
       const float ki = k[i];
       PointLabel label = PointLabel::None;
       if (ki >= ridge_min) label = PointLabel::Ridge;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "core/progress.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
 
@@ -210,7 +211,8 @@ class KindTracer {
 }  // namespace
 
 TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<PointLabel>& labels,
-                        const std::vector<float>& feature_curvature, float spacing, const TraceOptions& options) {
+                        const std::vector<float>& feature_curvature, float spacing, const TraceOptions& options,
+                        const ProgressFn& progress) {
   if (labels.size() != points.size() || feature_curvature.size() != points.size())
     throw Error("ridge/valley tracing: labels and curvatures must have one entry per point");
   if (!(options.corridor_fraction > 0.f && options.corridor_fraction <= 1.f))
@@ -227,6 +229,10 @@ TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<Poin
     Polyline line;
   };
   std::vector<Seeded> all;
+  const auto features = static_cast<std::size_t>(
+      std::count_if(labels.begin(), labels.end(), [](PointLabel l) { return l != PointLabel::None; }));
+  pcsketch::detail::ProgressSteps steps(progress, "ridge/valley tracing", features);
+  std::size_t seeds_done = 0;
   for (PointLabel kind : {PointLabel::Ridge, PointLabel::Valley}) {
     std::vector<std::uint32_t> subset;  // feature index -> point index, increasing
     for (std::uint32_t i = 0; i < points.size(); ++i)
@@ -242,6 +248,7 @@ TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<Poin
                       options.corridor_fraction * result.radius,
                       std::cos(options.max_turn_deg * std::numbers::pi_v<float> / 180.f));
     for (std::uint32_t s = 0; s < tracer.size(); ++s) {
+      steps.at(seeds_done + s);
       if (tracer.used(s)) continue;
       bool closed = false;
       const std::vector<Vertex> vertices = tracer.trace(s, closed);
@@ -256,7 +263,9 @@ TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<Poin
       }
       all.push_back({subset[s], std::move(line)});
     }
+    seeds_done += subset.size();
   }
+  steps.finish();
   std::stable_sort(all.begin(), all.end(), [](const Seeded& a, const Seeded& b) { return a.seed < b.seed; });
   for (Seeded& s : all) {
     result.seeds.push_back(s.seed);

@@ -20,6 +20,7 @@ struct Source {
   std::string_view bytes;
   const std::string& path;
   std::span<const Column> columns = {};  ///< text formats: ReadOptions::columns
+  const ProgressFn* progress = nullptr;   ///< ReadOptions::progress, for readers whose parse takes long
 
   [[noreturn]] void fail_at_byte(std::size_t offset, const std::string& message) const {
     throw Error(FileLoc{path, {}, offset}, message);

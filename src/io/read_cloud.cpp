@@ -235,7 +235,11 @@ ReadResult finish_points(RawCloud&& raw, const Source& source, const ReadOptions
 }
 
 ReadResult read_points(const Source& source, const ReadOptions& options) {
-  return finish_points(choose_reader(source).parse(source, Want::Points), source, options);
+  const ProgressReporter report(options.progress, "read");
+  report(0.0);
+  ReadResult result = finish_points(choose_reader(source).parse(source, Want::Points), source, options);
+  report(1.0);
+  return result;
 }
 
 Mesh read_faces(const Source& source, const ReadOptions& options) {
@@ -271,12 +275,12 @@ void check_scale(const PointCloud& cloud, const std::string& name) {
 
 ReadResult read_point_cloud(const std::string& path, const ReadOptions& options) {
   const detail::MappedFile file(path);
-  return read_points(Source{file.bytes(), path, options.columns}, options);
+  return read_points(Source{file.bytes(), path, options.columns, &options.progress}, options);
 }
 
 ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::string& name_hint,
                                         const ReadOptions& options) {
-  return read_points(Source{bytes, name_hint, options.columns}, options);
+  return read_points(Source{bytes, name_hint, options.columns, &options.progress}, options);
 }
 
 Mesh read_mesh(const std::string& path, const ReadOptions& options) {

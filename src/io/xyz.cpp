@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "columns.h"
+#include "core/progress.h"
 #include "raw_cloud.h"
 #include "text_scan.h"
 
@@ -130,7 +131,10 @@ RawCloud parse_xyz(const Source& src, Want) {
   std::size_t line_columns = 0;  // columns every line has: those of the first data line
   std::array<std::size_t, 3> xyz{0, 1, 2};
   std::vector<float> table;  // #P by width: every column read, as float (positions are kept in double apart)
+  static const ProgressFn kNone;
+  pcsketch::detail::ProgressSteps steps(src.progress ? *src.progress : kNone, "read", src.bytes.size());
   while (lines.next(line)) {
+    steps.at(lines.consumed(src.bytes));
     if (is_comment_or_blank(line)) {
       // A header may hide in a comment: CloudCompare writes "//X,Y,Z,R,G,B".
       if (first_data_line && layout.columns.empty()) {

@@ -285,6 +285,9 @@ ShadowResult shadow_hatching(const ShadowInput& in, const ShadowOptions& o) {
   result.light = light_direction(o.light, in.camera);
   if (o.mode == ShadowMode::None) return result;
   check(in, o);
+  // Reported between the steps: each is a parallel loop of a fraction of a second on millions of points.
+  const ProgressReporter report(o.progress, "shadows");
+  report(0.0);
   if (in.positions.empty() || !(in.spacing > 0.f) || !std::isfinite(in.spacing)) {
     // A degenerate cloud (no points, or all coincident) has no surface to shade: an unshaded drawing, not an error.
     result.warnings.push_back("shadow: no shading, the cloud has no point spacing (empty or degenerate cloud)");
@@ -295,6 +298,7 @@ ShadowResult shadow_hatching(const ShadowInput& in, const ShadowOptions& o) {
   const std::optional<detail::SilhouetteMask> mask =
       o.clip_to_surface ? std::optional(detail::silhouette_mask(in, o)) : std::nullopt;
   const detail::SilhouetteMask* const clip = mask ? &*mask : nullptr;
+  report(0.25);
   if (o.mode == ShadowMode::Paper || o.mode == ShadowMode::Both) {
     std::vector<float> ts;
     for (float k : o.k_set)
@@ -322,6 +326,7 @@ ShadowResult shadow_hatching(const ShadowInput& in, const ShadowOptions& o) {
       for (ShadeRegion& r : s.regions) result.regions.push_back(std::move(r));
     }
   }
+  report(0.5);
   if (o.mode == ShadowMode::Attached || o.mode == ShadowMode::Both) {
     std::vector<Stroke> hatch = detail::attached_hatching(in, o, result.light);
     for (Stroke& s : hatch) result.strokes.push_back(std::move(s));
@@ -332,6 +337,7 @@ ShadowResult shadow_hatching(const ShadowInput& in, const ShadowOptions& o) {
       for (Stroke& piece : detail::clip_stroke(s, *clip)) clipped.push_back(std::move(piece));
     result.strokes = std::move(clipped);
   }
+  report(1.0);
   return result;
 }
 

@@ -11,6 +11,9 @@
 
 #include "pcsketch/core/error.h"
 #include "core/angular_gap.h"
+#include "core/parallel_chunks.h"
+#include "core/progress.h"
+#include "contour_walk.h"
 #include "point_grid.h"
 
 namespace pcsketch::view {
@@ -23,6 +26,8 @@ constexpr float kDegToRad = kPi / 180.f;
 using pcsketch::detail::gap_exceeds;
 using pcsketch::detail::largest_gap;
 using pcsketch::detail::octant_bit;
+using detail::polyline_length;
+using detail::Walker;
 
 /// The unit vector pointing to the empty side of heading d: side = +1 on the right of d in (u, v), −1 on the left.
 Vec2f side_of(const Vec2f& d, float side) { return side * Vec2f(d.y(), -d.x()); }
@@ -30,90 +35,10 @@ Vec2f side_of(const Vec2f& d, float side) { return side * Vec2f(d.y(), -d.x()); 
 /// The heading a walk starts with so that the empty direction `outward` lies on its `side`.
 Vec2f heading_for(const Vec2f& outward, float side) { return side * Vec2f(-outward.y(), outward.x()); }
 
-float polyline_length(std::span<const Vec3f> pts, bool closed) {
-  float length = 0;
-  for (std::size_t i = 1; i < pts.size(); ++i) length += (pts[i] - pts[i - 1]).norm();
-  if (closed && pts.size() > 2) length += (pts.front() - pts.back()).norm();
-  return length;
-}
-
-/// State shared by the walks over one set of contour points: positions (2D image or 3D), per-point search scale,
-/// and the points already used (taken or absorbed).
-template <int D>
-struct Walker {
-  using Vec = Eigen::Matrix<float, D, 1>;
-  std::span<const Vec> pts;
-  const detail::PointGrid<D>& grid;
-  std::span<const float> scale;  ///< per point: the unit the radius factors multiply (h_px, or h in 3D)
-  const ContourOptions& options;
-  std::vector<char> used;
-
-  /// Marks unused points beside or behind the step p → q (within `absorb` of the segment line, projection ≤ |pq|).
-  void absorb(std::uint32_t from, std::uint32_t to, float absorb_radius) {
-    const Vec p = pts[from];
-    const Vec step = pts[to] - p;
-    const float len = step.norm();
-    if (len <= 0) return;
-    const Vec dir = step / len;
-    grid.for_each_within(p, len + absorb_radius, [&](std::uint32_t j, float) {
-      if (used[j]) return;
-      const Vec c = pts[j] - p;
-      const float t = c.dot(dir);
-      if (t > len || t < -absorb_radius) return;
-      if ((c - t * dir).norm() < absorb_radius) used[j] = 1;
-    });
-  }
-
-  /// Unit heading over the last `heading_steps` steps of the chain (n_p = p_front − p, smoothed).
-  Vec heading(const std::vector<std::uint32_t>& chain) const {
-    const std::size_t back = std::min(chain.size() - 1, std::max<std::size_t>(options.heading_steps, 1));
-    Vec d = pts[chain.back()] - pts[chain[chain.size() - 1 - back]];
-    const float len = d.norm();
-    return len > 0 ? Vec(d / len) : d;
-  }
-
-  /// Grows `chain` (holding the seed) by repeatedly taking the point `choose(cur, heading)` returns; stops when it
-  /// returns none or closes on the seed (only when `may_close`). Returns whether the chain closed.
-  template <class Choose>
-  bool grow(std::vector<std::uint32_t>& chain, Vec heading_now, bool may_close, Choose&& choose) {
-    const std::uint32_t seed = chain.front();
-    float walked = 0;
-    for (;;) {
-      const std::uint32_t cur = chain.back();
-      const float radius = options.trace_radius_factor * scale[cur];
-      const bool seed_eligible = may_close && chain.size() >= 4 && walked > 2 * radius;
-      const std::int64_t next = choose(cur, heading_now, radius, seed_eligible ? seed : cur);
-      if (next < 0) return false;
-      const auto q = static_cast<std::uint32_t>(next);
-      if (q == seed) return true;
-      absorb(cur, q, options.absorb_factor * scale[cur]);
-      walked += (pts[q] - pts[cur]).norm();
-      used[q] = 1;
-      chain.push_back(q);
-      heading_now = heading(chain);
-    }
-  }
-
-  /// Grows from `seed` forward (the chain may close on the seed), then, if it did not close, backward from the seed.
-  /// Returns the points in order along the line and whether it closed.
-  template <class ChooseForward, class ChooseBackward>
-  std::pair<std::vector<std::uint32_t>, bool> grow_both_ways(std::uint32_t seed, Vec forward_heading,
-                                                             ChooseForward&& forward_choose, Vec backward_heading,
-                                                             ChooseBackward&& backward_choose) {
-    std::vector<std::uint32_t> forward{seed};
-    if (grow(forward, forward_heading, true, forward_choose)) return {std::move(forward), true};
-    std::vector<std::uint32_t> chain{seed};
-    grow(chain, backward_heading, false, backward_choose);
-    std::reverse(chain.begin(), chain.end());
-    chain.insert(chain.end(), forward.begin() + 1, forward.end());
-    return {std::move(chain), false};
-  }
-};
-
 /// Chains the outline's boundary points in the image plane (forward with the empty side on the right, then
 /// backward from the seed when the outline did not close).
 std::vector<Polyline> trace_outline(const ContourPoints& cp, const std::vector<Vec3f>& positions,
-                                    const ContourOptions& o) {
+                                    const ContourOptions& o, pcsketch::detail::ProgressSteps& steps) {
   const std::size_t nb = cp.boundary.size();
   std::vector<Vec2f> pts(nb);
   std::vector<float> scale(nb);
@@ -181,7 +106,9 @@ std::vector<Polyline> trace_outline(const ContourPoints& cp, const std::vector<V
   });
 
   std::vector<Polyline> lines;
-  for (const std::uint32_t seed : seeds) {
+  for (std::size_t s = 0; s < nb; ++s) {
+    steps.at(s);
+    const std::uint32_t seed = seeds[s];
     if (walker.used[seed]) continue;
     walker.used[seed] = 1;
     const auto [chain, closed] = walker.grow_both_ways(seed, heading_for(cp.outward[seed], +1.f), chooser(+1.f),
@@ -233,7 +160,8 @@ std::vector<char> covered_by_outline(const std::vector<Vec3f>& rim, const std::v
 /// Chains the interior rim samples in 3D with the paper's rule (nearest ahead within z_max of the direction line),
 /// after dropping those the outline already covers.
 std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<Polyline>& outline, float h,
-                                     const ContourOptions& o, float min_length_factor) {
+                                     const ContourOptions& o, float min_length_factor,
+                                     pcsketch::detail::ProgressSteps& steps) {
   const float dedupe = o.interior_dedupe_factor * h;
   const std::vector<char> covered = covered_by_outline(cp.rim, outline, h, dedupe);
   std::vector<Vec3f> rim;
@@ -273,6 +201,7 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
 
   std::vector<Polyline> lines;
   for (std::uint32_t seed = 0; seed < rim.size(); ++seed) {
+    steps.at(cp.boundary.size() + seed);  // after the outline's seeds
     if (walker.used[seed]) continue;
     walker.used[seed] = 1;
     // Paper: the first direction points to p_front, the nearest unused point.
@@ -380,7 +309,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       throw Error("contours: interior contours need the cloud's neighbourhoods (run analyse_surface)");
   }
   ContourPoints cp;
-  const std::vector<float> unit = spacing_units(neighbourhoods, spacing, n, o.adaptive_spacing);
+  std::vector<float> unit = spacing_units(neighbourhoods, spacing, n, o.adaptive_spacing);
   cp.projected.resize(n);
   cp.spacing_px.resize(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -391,6 +320,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       cp.spacing_px[i] = in_front && cp.projected[i].allFinite() ? unit[i] / camera.units_per_pixel(depth) : 0.f;
     }
   });
+  unit = std::vector<float>();  // freed before the image-plane grid, the peak of a draw
 
   // Points behind a perspective eye are left out of the image-plane analysis.
   std::vector<std::uint32_t> valid;
@@ -433,11 +363,11 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
     };
     // Queries run in the grid's cell order so that neighbouring queries scan the same cells (cache).
     const std::vector<std::uint32_t>& grid_order = grid.order();
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, valid.size()), [&](const tbb::blocked_range<std::size_t>& range) {
+    pcsketch::detail::parallel_chunks(valid.size(), o.progress, "contour points", [&](std::size_t begin, std::size_t end) {
       std::vector<std::pair<float, std::uint32_t>> near;
       std::vector<Vec2f> dirs;
       std::vector<float> angles;
-      for (std::size_t g = range.begin(); g != range.end(); ++g) {
+      for (std::size_t g = begin; g != end; ++g) {
         const std::size_t v = grid_order[g];
         const float r = o.radius_factor * cp.spacing_px[valid[v]];
         if (use_3d_neighbours && surrounded(valid[v], dirs)) continue;
@@ -552,10 +482,13 @@ ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec
                               const ContourOptions& options, bool denoised) {
   if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("contours: the mean spacing h must be positive");
   ContourLines lines;
-  lines.outline = trace_outline(points, positions, options);
+  pcsketch::detail::ProgressSteps steps(options.progress, "contour connection",
+                                        points.boundary.size() + (options.interior ? points.rim.size() : 0));
+  lines.outline = trace_outline(points, positions, options, steps);
   if (options.interior)
     lines.interior = trace_interior(points, lines.outline, spacing, options,
-                                    denoised ? options.denoised_min_length_factor : options.min_length_factor);
+                                    denoised ? options.denoised_min_length_factor : options.min_length_factor, steps);
+  steps.finish();
   return lines;
 }
 

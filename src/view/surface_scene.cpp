@@ -3,7 +3,9 @@
 #include <embree3/rtcore.h>
 
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <mutex>
 #include <string>
 
 #include "pcsketch/core/assert.h"
@@ -52,6 +54,43 @@ void check_device(RTCDevice device, const char* step) {
     throw Error(std::string("surface scene: Embree failed in ") + step + " (error " + std::to_string(code) + ")");
 }
 
+/// Embree's build monitor, which several build threads may call at once: it passes on a report each time the build
+/// has gone a twentieth further, one call at a time, and remembers a request to stop (Embree then abandons the
+/// build) or an exception (which must not cross Embree's C frames).
+class BuildMonitor {
+ public:
+  explicit BuildMonitor(const ProgressFn& progress) : progress_(progress) {}
+
+  static bool call(void* self, double fraction) { return static_cast<BuildMonitor*>(self)->report(fraction); }
+
+  /// After the build: throws what the callback threw, or Cancelled if it asked to stop.
+  void rethrow() const {
+    if (error_) std::rethrow_exception(error_);
+    if (stopped_) throw Cancelled();
+  }
+
+ private:
+  bool report(double fraction) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (stopped_ || fraction < next_) return !stopped_;
+    next_ = fraction + 0.05;
+    try {
+      stopped_ = !progress_(kStage, fraction);
+    } catch (...) {
+      error_ = std::current_exception();
+      stopped_ = true;
+    }
+    return !stopped_;
+  }
+
+  static constexpr std::string_view kStage = "scene";
+  const ProgressFn& progress_;
+  std::mutex mutex_;
+  double next_ = 0.05;
+  bool stopped_ = false;
+  std::exception_ptr error_;
+};
+
 }  // namespace
 
 std::vector<float> local_spacing(const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t kth) {
@@ -72,6 +111,8 @@ SurfaceScene::SurfaceScene(const std::vector<Vec3f>& positions, const std::vecto
     throw Error("surface scene: positions, normals and local spacing must have one entry per point");
   if (n > std::numeric_limits<unsigned>::max()) throw Error("surface scene: too many points for Embree");
 
+  const ProgressReporter report(options.progress, "scene");
+  report(0.0);
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw Error("surface scene: Embree device creation failed");
   impl_->scene = rtcNewScene(impl_->device);
@@ -109,8 +150,13 @@ SurfaceScene::SurfaceScene(const std::vector<Vec3f>& positions, const std::vecto
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(impl_->scene, geometry);
   rtcReleaseGeometry(geometry);
+  BuildMonitor monitor(options.progress);
+  if (options.progress) rtcSetSceneProgressMonitorFunction(impl_->scene, &BuildMonitor::call, &monitor);
   rtcCommitScene(impl_->scene);
+  rtcSetSceneProgressMonitorFunction(impl_->scene, nullptr, nullptr);  // `monitor` goes out of scope
+  monitor.rethrow();
   check_device(impl_->device, "scene build");
+  report(1.0);
 }
 
 SurfaceScene::~SurfaceScene() = default;

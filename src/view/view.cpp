@@ -4,6 +4,7 @@
 #include <chrono>
 #include <nlohmann/json.hpp>
 
+#include "core/progress.h"
 #include "pcsketch/core/error.h"
 
 namespace pcsketch::view {
@@ -42,12 +43,13 @@ ViewResult compute_view(const PointCloud& cloud, const differential::Surface& su
   result.camera = camera;
 
   auto start = std::chrono::steady_clock::now();
+  const ContourOptions contour_options = pcsketch::detail::with_progress(options.contours, options.progress);
   result.contour_points = find_contour_points(cloud.positions, cloud.normals, surface.neighbourhoods, surface.spacing,
-                                              camera, options.contours, surface.normal_noise, border);
+                                              camera, contour_options, surface.normal_noise, border);
   result.timings.contour_points = seconds_since(start);
 
   start = std::chrono::steady_clock::now();
-  ContourLines contours = connect_contours(result.contour_points, cloud.positions, surface.spacing, options.contours,
+  ContourLines contours = connect_contours(result.contour_points, cloud.positions, surface.spacing, contour_options,
                                            surface.denoised);
   result.timings.contour_connection = seconds_since(start);
   result.contour_count = contours.outline.size() + contours.interior.size();
@@ -61,7 +63,8 @@ ViewResult compute_view(const PointCloud& cloud, const differential::Surface& su
   for (const Polyline& line : contours.outline) result.lines.push_back(seen_line(line, camera));
   std::vector<Polyline> cast = std::move(contours.interior);
   cast.insert(cast.end(), lines.begin(), lines.end());
-  std::vector<ViewLine> seen = line_visibility(cast, scene, camera, surface.spacing, options.visibility);
+  std::vector<ViewLine> seen = line_visibility(cast, scene, camera, surface.spacing,
+                                               pcsketch::detail::with_progress(options.visibility, options.progress));
   result.lines.insert(result.lines.end(), std::make_move_iterator(seen.begin()), std::make_move_iterator(seen.end()));
   result.timings.visibility = seconds_since(start);
   return result;

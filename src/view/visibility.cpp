@@ -1,13 +1,11 @@
 #include "pcsketch/view/visibility.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "core/parallel_chunks.h"
 #include "pcsketch/core/error.h"
 
 namespace pcsketch::view {
@@ -140,8 +138,8 @@ std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const 
   if (o.smoothing_window % 2 == 0) throw Error("visibility: the smoothing window must be odd");
   std::vector<ViewLine> out(lines.size());
   // Lines vary from a handful to thousands of vertices; a grain of one line keeps both cores busy.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, lines.size(), 1), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t l = r.begin(); l != r.end(); ++l) {
+  pcsketch::detail::parallel_chunks(lines.size(), o.progress, "visibility", [&](std::size_t begin, std::size_t end) {
+    for (std::size_t l = begin; l != end; ++l) {
       ViewLine& vl = out[l];
       vl.line = lines[l];
       const std::size_t n = vl.line.points.size();
@@ -174,7 +172,7 @@ std::vector<ViewLine> line_visibility(const std::vector<Polyline>& lines, const 
       }
       build_runs(vl, camera);
     }
-  });
+  }, 1);
   return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 
@@ -271,6 +272,27 @@ TEST(ReadCloud, HostileHeadersFromMemory) {
       Error);
   EXPECT_THROW(read_point_cloud_from_memory("ply\nformat ascii 1.0\nbogus\nend_header\n", "e.ply"), Error);
   EXPECT_THROW(read_point_cloud_from_memory("ply\nelement vertex 0\nend_header\n", "e.ply"), Error);
+}
+
+// A text file reports "read" as its lines are parsed, forward only, at most ~20 times; false stops it.
+TEST(ReadCloud, TextLinesReportProgressAndStopWhenAsked) {
+  std::string text;
+  for (int i = 0; i < 1000; ++i) text += std::to_string(i) + " " + std::to_string(i % 7) + " 0.5\n";
+  std::vector<double> fractions;
+  ReadOptions options;
+  options.progress = [&](std::string_view stage, double fraction) {
+    EXPECT_EQ(stage, "read");
+    fractions.push_back(fraction);
+    return true;
+  };
+  EXPECT_EQ(read_point_cloud_from_memory(text, "line.xyz", options).cloud.size(), 1000u);
+  ASSERT_GE(fractions.size(), 10u);  // not only the start and the end
+  EXPECT_LE(fractions.size(), 25u);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_EQ(fractions.front(), 0.0);
+  EXPECT_EQ(fractions.back(), 1.0);
+  options.progress = [](std::string_view, double fraction) { return fraction < 0.5; };
+  EXPECT_THROW(read_point_cloud_from_memory(text, "line.xyz", options), Cancelled);
 }
 
 }  // namespace

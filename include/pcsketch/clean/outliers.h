@@ -32,6 +32,7 @@ struct OutlierOptions {
   /// mixed pixels, a bird): left out.
   std::size_t min_cluster = 32;
   double min_cluster_fraction = 0.0005;
+  ProgressFn progress;  ///< optional
 
   nlohmann::json to_json() const;
 };

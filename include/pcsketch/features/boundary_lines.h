@@ -50,6 +50,7 @@ struct BoundaryOptions {
   /// Joining broken border lines (pieces up to 2r apart join when aligned), dropping short ones (units of h),
   /// smoothing.
   JoinOptions joining{.join_distance_alpha = 2.f};
+  ProgressFn progress;  ///< optional
 
   nlohmann::json to_json() const;
 };

@@ -18,6 +18,7 @@ struct RidgeValleyOptions {
   DetectionOptions detection;  ///< step 1: which points are ridge/valley points
   TraceOptions tracing;        ///< step 2: connecting them into polylines
   JoinOptions joining;         ///< step 3: joining broken lines, dropping short ones, smoothing
+  ProgressFn progress;         ///< optional, reported by every step
 };
 
 /// Seconds per step (paper Table 2: "ridge-valley points extraction" = detection, "connection" = tracing + joining).

@@ -90,10 +90,11 @@ const Vec3f& feature_direction(const differential::Curvature& curvature, std::si
 /// @param[in] curvature #P principal curvatures and directions (convex positive with outward normals)
 /// @param[in] neighbourhoods k-NN of every point (used by the non-maximum suppression)
 /// @param[in] spacing mean spacing h, model units (used by the saliency floor)
+/// @param[in] progress optional, reports "ridge/valley detection" (a parameter, as for trace_lines)
 /// @throws pcsketch::Error if the array sizes differ or an option is out of range.
 DetectionResult detect_ridge_valley_points(const std::vector<Vec3f>& points, const differential::Curvature& curvature,
                                            const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
-                                           const DetectionOptions& options = {});
+                                           const DetectionOptions& options = {}, const ProgressFn& progress = {});
 
 /// The options as JSON (recorded in outputs so a result states the exact parameters).
 nlohmann::json to_json(const DetectionOptions& options);

@@ -51,9 +51,12 @@ struct TraceResult {
 /// @param[in] labels #P labels (detect_ridge_valley_points)
 /// @param[in] feature_curvature #P signed k_i (detect_ridge_valley_points)
 /// @param[in] spacing mean spacing h, model units
+/// @param[in] progress optional, reports "ridge/valley tracing" (not an option field: TraceOptions is built with
+///            designated initializers inside other options, where GCC 12 misreports a std::function member)
 /// @throws pcsketch::Error if the sizes differ, r would not be positive, or an option is out of range.
 TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<PointLabel>& labels,
-                        const std::vector<float>& feature_curvature, float spacing, const TraceOptions& options = {});
+                        const std::vector<float>& feature_curvature, float spacing, const TraceOptions& options = {},
+                        const ProgressFn& progress = {});
 
 nlohmann::json to_json(const TraceOptions& options);
 

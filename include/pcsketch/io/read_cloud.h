@@ -52,6 +52,9 @@ struct ReadOptions {
   /// Keep only the first of points with exactly equal coordinates (one warning counts the others): m copies of a
   /// point would make every neighbourhood query around it cost m, and they add nothing to the surface.
   bool collapse_duplicates = true;
+  /// Optional: "read" from 0 at the start to 1 when the cloud is ready (text files also as their lines are parsed);
+  /// returning false stops the read (pcsketch::Cancelled).
+  ProgressFn progress;
 };
 
 /// A cloud as read, plus what the reader noticed.

@@ -107,6 +107,7 @@ struct ShadowOptions {
   float attached_min_facing = 0.15f;
   /// Shorter hatch pieces are dropped: specks on surfaces seen edge-on read as noise. 6 px = one hatch spacing.
   float min_hatch_px = 6.f;
+  ProgressFn progress;  ///< optional
 
   nlohmann::json to_json() const;
 };

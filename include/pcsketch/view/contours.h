@@ -106,6 +106,7 @@ struct ContourOptions {
   /// 0.770 / 0.602 → 0.741 / 0.585. Interior contours keep h: a local unit there lost recall on all three.
   /// Off: the paper's single radius everywhere.
   bool adaptive_spacing = true;
+  ProgressFn progress;  ///< optional: "contour points", "contour connection"
 
   nlohmann::json to_json() const;
 };

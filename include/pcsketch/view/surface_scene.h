@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
+#include "pcsketch/core/report.h"
 #include "pcsketch/neighbourhood/neighbourhoods.h"
 
 namespace pcsketch::view {
@@ -16,6 +17,7 @@ struct SurfaceSceneOptions {
   /// Disc radius in units of the local spacing (distance to the point's k-th neighbour, see `local_spacing`). Discs
   /// must overlap to close the surface; 1.0 leaves no holes on uniform scans while keeping silhouettes within about h.
   float disc_radius_factor = 1.0f;
+  ProgressFn progress;  ///< optional: the build reports as "scene" (from Embree's threads, one call at a time)
 };
 
 /// A hit of a ray with the disc of one point.

@@ -20,6 +20,7 @@ namespace pcsketch::view {
 struct ViewOptions {
   ContourOptions contours;
   VisibilityOptions visibility;
+  ProgressFn progress;  ///< optional, passed to the steps whose own progress is empty
 
   nlohmann::json to_json() const;
 };

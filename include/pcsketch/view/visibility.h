@@ -52,6 +52,7 @@ struct VisibilityOptions {
   /// Where visibility changes along a segment, the change point is found by this many bisection steps (extra rays),
   /// so a hidden arc ends where the occluder's silhouette crosses it, not at the nearest vertex.
   int transition_refinement = 6;
+  ProgressFn progress;  ///< optional
 
   nlohmann::json to_json() const;
 };
