@@ -7,15 +7,18 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "commands.h"
+#include "config.h"
 #include "options.h"
 #include "views.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/io/read_cloud.h"
+#include "pcsketch/options_table.h"
 #include "pcsketch/pipeline.h"
 #include "pcsketch/render/write.h"
 #include "pcsketch/validate.h"
@@ -32,6 +35,8 @@ struct DrawArgs {
   std::string json;
   std::string stages;
   bool timings = false;
+  std::string config;         ///< --config: options recorded with a drawing, under the flags given
+  bool print_config = false;  ///< --print-config: write the resolved options, draw nothing
   ViewRequest views;
   io::ReadOptions read;
   DrawOptions options;
@@ -142,7 +147,17 @@ void draw_one_view(const DrawArgs& args, const Prepared& prepared, const NamedCa
   });
 }
 
-void run_draw(DrawArgs& args, const GlobalOptions& global) {
+/// The options as resolved (config, flags, first view's camera) on stdout as JSON, the form --config reads.
+void print_config(DrawArgs& args) {
+  args.options.camera = resolve_views(args.options.camera, args.views).front().camera;
+  validate(args.options);
+  std::cout << options::to_json(args.options).dump(2) << "\n";
+}
+
+void run_draw(DrawArgs& args, const CLI::App& cmd, const GlobalOptions& global) {
+  if (!args.config.empty()) args.options = with_config(read_config(args.config), args.config, args.options, cmd);
+  if (args.print_config) return print_config(args);
+  if (args.input.empty()) throw OptionError("INPUT", "is required (a point cloud to draw)");
   if (args.outputs.empty() && args.json.empty() && args.stages.empty())
     throw OptionError("draw", "nothing to write: give -o OUT.svg|png|pdf, --json OUT.json or --stages DIR");
   if (!args.json.empty()) args.outputs.push_back(args.json);
@@ -180,8 +195,12 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* cmd = app.add_subcommand(
       "draw", "Sketch drawing of a point cloud: contours, ridges, valleys, thickness, shadow hatching (paper Fig. 2)");
   cmd->fallthrough();  // the global flags (-q, --threads) may also follow the subcommand
-  cmd->add_option("INPUT", args->input, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)")
-      ->required();
+  cmd->add_option("INPUT", args->input, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)");
+  cmd->add_option("--config", args->config,
+                  "Options recorded with a drawing (its .svg or .json) or written by --print-config; flags given "
+                  "here override them");
+  cmd->add_flag("--print-config", args->print_config,
+                "Write the resolved options as JSON to stdout (the form --config reads) and draw nothing");
   add_read_options(cmd, args->read);
   add_memory_option(cmd, args->options.max_memory_gb);
   cmd->add_option("-o,--output", args->outputs, "Output file; format from the extension: .svg .png .pdf (repeatable)");
@@ -192,7 +211,7 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--timings", args->timings, "Print seconds per stage (the paper's Table 2 rows marked *)");
   add_camera_options(cmd, args->options.camera, args->views);
   add_draw_options(cmd, args->options);
-  cmd->callback([args, &global] { run_draw(*args, global); });
+  cmd->callback([args, cmd, &global] { run_draw(*args, *cmd, global); });
 }
 
 }  // namespace pcsketch::cli

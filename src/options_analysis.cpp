@@ -20,8 +20,8 @@ void add_surface(Builder& b) {
   // --file-normals auto|trust|orient sets both of these (cli/options.cpp).
   b.add(PCSKETCH_OPTION(surface.orient_file_normals),
         {.flag = "--file-normals", .cli = Cli::HandWritten,
-         .help = "Normals read from the file: auto (kept, but re-oriented when their signs disagree between "
-                 "neighbours), trust (kept as they are) or orient (always re-oriented)"});
+         .help = "Re-orient file normals always (--file-normals orient; auto: only when their signs disagree, "
+                 "trust: never)"});
   b.add(PCSKETCH_OPTION(surface.file_normal_disagreement),
         {.flag = "--file-normals", .cli = Cli::HandWritten, .range = closed(0, 1),
          .help = "File normals are re-oriented when more than this fraction of neighbour pairs disagree in sign "
