@@ -4,7 +4,6 @@
 // the scanner missed) are found too, so that no stage draws them, but they make no line.
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -50,8 +49,6 @@ struct BoundaryOptions {
   /// Joining broken border lines (pieces up to 2r apart join when aligned), dropping short ones (units of h),
   /// smoothing.
   JoinOptions joining{.join_distance_alpha = 2.f};
-
-  nlohmann::json to_json() const;
 };
 
 struct Boundary {

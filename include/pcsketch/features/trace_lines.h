@@ -2,7 +2,6 @@
 // Connecting ridge/valley points into polylines: the paper's PCA-guided growth (§IV.A, second step).
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <vector>
 
@@ -54,7 +53,5 @@ struct TraceResult {
 /// @throws pcsketch::Error if the sizes differ, r would not be positive, or an option is out of range.
 TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<PointLabel>& labels,
                         const std::vector<float>& feature_curvature, float spacing, const TraceOptions& options = {});
-
-nlohmann::json to_json(const TraceOptions& options);
 
 }  // namespace pcsketch::features

@@ -4,7 +4,6 @@
 // the viewer inside the outline (an ear in front of the head, the inner rim of a torus seen from the side).
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -106,8 +105,6 @@ struct ContourOptions {
   /// 0.770 / 0.602 → 0.741 / 0.585. Interior contours keep h: a local unit there lost recall on all three.
   /// Off: the paper's single radius everywhere.
   bool adaptive_spacing = true;
-
-  nlohmann::json to_json() const;
 };
 
 /// The contour points of one view (the "contour points extraction" step).

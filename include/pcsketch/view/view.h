@@ -3,7 +3,6 @@
 // view-independent (the Surface, the lines, the SurfaceScene) is computed once and passed in, so a second view
 // costs only projection, contour extraction and ray casting.
 
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -20,8 +19,6 @@ namespace pcsketch::view {
 struct ViewOptions {
   ContourOptions contours;
   VisibilityOptions visibility;
-
-  nlohmann::json to_json() const;
 };
 
 /// Seconds per step, named after the paper's Table 2 rows.

@@ -4,7 +4,6 @@
 // into visible and hidden runs, hidden runs kept in the data.
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/polyline.h"
@@ -52,8 +51,6 @@ struct VisibilityOptions {
   /// Where visibility changes along a segment, the change point is found by this many bisection steps (extra rays),
   /// so a hidden arc ends where the occluder's silhouette crosses it, not at the nearest vertex.
   int transition_refinement = 6;
-
-  nlohmann::json to_json() const;
 };
 
 /// A run of one line with constant visibility. Consecutive runs share their end points.
