@@ -25,7 +25,11 @@ std::string svg_desc(const std::string& svg, const std::string& path) {
     }
     const std::size_t end = text.find(';', i);
     const std::string_view entity = text.substr(i, end == std::string_view::npos ? 1 : end - i + 1);
-    const char c = entity == "&amp;" ? '&' : entity == "&lt;" ? '<' : entity == "&gt;" ? '>' : entity == "&quot;" ? '"' : 0;
+    const char c = entity == "&amp;"    ? '&'
+                   : entity == "&lt;"   ? '<'
+                   : entity == "&gt;"   ? '>'
+                   : entity == "&quot;" ? '"'
+                                        : 0;
     if (c == 0) throw Error(FileLoc{path, {}, {}}, "unexpected XML entity " + quote(entity) + " in <desc>");
     out += c;
     i += entity.size() - 1;

@@ -4,8 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include "options.h"
-#include "views.h"
 #include "pcsketch/core/error.h"
+#include "views.h"
 
 namespace pcsketch::cli {
 
@@ -32,15 +32,18 @@ CLI::Option* bind(CLI::App* cmd, const options::Option& opt, DrawOptions& o) {
   switch (opt.type) {
     case options::Type::Bool:
       // No default shown: "--no-brush{false}" would read as the opposite of what the flag does.
-      return cmd->add_flag_function(opt.flag, [&opt, &o](std::int64_t) { apply(opt, o, !opt.negated); }, help);
+      return cmd->add_flag_function(
+          opt.flag, [&opt, &o](std::int64_t) { apply(opt, o, !opt.negated); }, help);
     case options::Type::Integer:
       return cmd->add_option_function<std::int64_t>(
           opt.flag, [&opt, &o](const std::int64_t& v) { apply(opt, o, v); }, help);
     case options::Type::Number:
-      return cmd->add_option_function<double>(opt.flag, [&opt, &o](const double& v) { apply(opt, o, v); }, help);
+      return cmd->add_option_function<double>(
+          opt.flag, [&opt, &o](const double& v) { apply(opt, o, v); }, help);
     case options::Type::Choice:
       return cmd
-          ->add_option_function<std::string>(opt.flag, [&opt, &o](const std::string& v) { apply(opt, o, v); }, help)
+          ->add_option_function<std::string>(
+              opt.flag, [&opt, &o](const std::string& v) { apply(opt, o, v); }, help)
           ->check(CLI::IsMember(opt.choices));
     case options::Type::List:
       return cmd

@@ -18,7 +18,8 @@
 
 // The JSON key is the member path spelled in the accessor, so the two cannot drift apart: a macro is the one way to
 // have both from one spelling.
-#define PCSKETCH_OPTION(path) #path, [](DrawOptions& o) -> auto& { return o.path; }
+#define PCSKETCH_OPTION(path) \
+#path, [](DrawOptions & o) -> auto& { return o.path; }
 
 namespace pcsketch::options::detail {
 
@@ -37,12 +38,18 @@ constexpr bool is_vec3 = std::is_same_v<T, Vec3d> || std::is_same_v<T, Vec3f>;
 /// The table's Type of a member of type T (the optional stripped).
 template <class T>
 constexpr Type type_of() {
-  if constexpr (std::is_same_v<T, bool>) return Type::Bool;
-  else if constexpr (std::is_integral_v<T>) return Type::Integer;
-  else if constexpr (std::is_floating_point_v<T>) return Type::Number;
-  else if constexpr (std::is_same_v<T, std::vector<float>>) return Type::List;
-  else if constexpr (is_vec3<T>) return Type::Vector;
-  else return Type::Custom;
+  if constexpr (std::is_same_v<T, bool>)
+    return Type::Bool;
+  else if constexpr (std::is_integral_v<T>)
+    return Type::Integer;
+  else if constexpr (std::is_floating_point_v<T>)
+    return Type::Number;
+  else if constexpr (std::is_same_v<T, std::vector<float>>)
+    return Type::List;
+  else if constexpr (is_vec3<T>)
+    return Type::Vector;
+  else
+    return Type::Custom;
 }
 
 [[noreturn]] inline void wrong(const std::string& key, const char* expected, const nlohmann::json& j) {
@@ -61,7 +68,8 @@ T read_value(const std::string& key, const nlohmann::json& j) {
     if (!j.is_boolean()) wrong(key, "true or false", j);
     return j.get<bool>();
   } else if constexpr (std::is_integral_v<T>) {
-    if (j.is_number_unsigned() && std::in_range<T>(j.get<std::uint64_t>())) return static_cast<T>(j.get<std::uint64_t>());
+    if (j.is_number_unsigned() && std::in_range<T>(j.get<std::uint64_t>()))
+      return static_cast<T>(j.get<std::uint64_t>());
     if (j.is_number_integer() && std::in_range<T>(j.get<std::int64_t>())) return static_cast<T>(j.get<std::int64_t>());
     wrong(key, "a whole number in the member's type", j);
   } else if constexpr (std::is_floating_point_v<T>) {
@@ -74,7 +82,8 @@ T read_value(const std::string& key, const nlohmann::json& j) {
   } else {
     static_assert(is_vec3<T>);
     if (!j.is_array() || j.size() != 3) wrong(key, "three numbers [x, y, z]", j);
-    return T(static_cast<typename T::Scalar>(to_number(key, j[0])), static_cast<typename T::Scalar>(to_number(key, j[1])),
+    return T(static_cast<typename T::Scalar>(to_number(key, j[0])),
+             static_cast<typename T::Scalar>(to_number(key, j[1])),
              static_cast<typename T::Scalar>(to_number(key, j[2])));
   }
 }
@@ -119,8 +128,10 @@ class Builder {
     meta.get = [access](const DrawOptions& o) {
       // The accessor only reads here; one accessor serves get and set.
       const Member& m = access(const_cast<DrawOptions&>(o));
-      if constexpr (Optional<Member>::value) return m ? write_value(*m) : nlohmann::json();
-      else return write_value(m);
+      if constexpr (Optional<Member>::value)
+        return m ? write_value(*m) : nlohmann::json();
+      else
+        return write_value(m);
     };
     meta.set = [access, k = key](DrawOptions& o, const nlohmann::json& j) {
       if constexpr (Optional<Member>::value) {

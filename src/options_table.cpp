@@ -41,8 +41,8 @@ void read_object(const nlohmann::json& json, const std::string& prefix, DrawOpti
       option->set(options, value);
       continue;
     }
-    const bool inner = std::any_of(table().begin(), table().end(),
-                                   [&](const Option& o) { return o.key.starts_with(key + "."); });
+    const bool inner =
+        std::any_of(table().begin(), table().end(), [&](const Option& o) { return o.key.starts_with(key + "."); });
     if (!inner) throw Error(key + ": no such option (docs/parameters.md lists them)");
     read_object(value, key, options);
   }

@@ -42,8 +42,8 @@ enum class Cli {
 
 /// One option.
 struct Option {
-  std::string key;    ///< JSON path in DrawOptions::to_json, the member path: "features.detection.ridge_threshold_alpha"
-  std::string flag;   ///< CLI flag ("--alpha"); empty: JSON and Python config only
+  std::string key;   ///< JSON path in DrawOptions::to_json, the member path: "features.detection.ridge_threshold_alpha"
+  std::string flag;  ///< CLI flag ("--alpha"); empty: JSON and Python config only
   std::string group;  ///< --help section and docs/parameters.md heading
   Type type = Type::Number;
   bool nullable = false;  ///< std::optional: null (JSON) or absent (CLI) leaves it unset
@@ -53,7 +53,7 @@ struct Option {
   std::vector<std::string> choices;  ///< Type::Choice: the names, in enum order
   std::string unit;
   std::string help;
-  std::function<nlohmann::json(const DrawOptions&)> get;          ///< the value as JSON (null when unset)
+  std::function<nlohmann::json(const DrawOptions&)> get;         ///< the value as JSON (null when unset)
   std::function<void(DrawOptions&, const nlohmann::json&)> set;  ///< @throws Error for a value of the wrong type
 
   /// What messages call it: the flag, else the key.

@@ -19,14 +19,16 @@ const std::string kBunny = PCSKETCH_DATA "/bunny.ply";
 
 TEST_F(CliConfig, ReplayFromTheSvgAndTheJsonGivesTheSameBytes) {
   // Non-default options of several stages, a named view and a size: all must come back from the record.
-  ASSERT_EQ(run("-q draw " + kBunny + " --size 160x120 --view left --alpha 0.3 --rho-max 4 --shadow paper "
-                "--no-fusion --hidden-lines dashed -o " + path("a.svg") + " --json " + path("a.json"))
+  ASSERT_EQ(run("-q draw " + kBunny +
+                " --size 160x120 --view left --alpha 0.3 --rho-max 4 --shadow paper "
+                "--no-fusion --hidden-lines dashed -o " +
+                path("a.svg") + " --json " + path("a.json"))
                 .status,
             0);
   for (const char* config : {"a.svg", "a.json"}) {
     SCOPED_TRACE(config);
-    const CommandRun r = run("-q draw " + kBunny + " --config " + path(config) + " -o " + path("b.svg") +
-                             " --json " + path("b.json"));
+    const CommandRun r =
+        run("-q draw " + kBunny + " --config " + path(config) + " -o " + path("b.svg") + " --json " + path("b.json"));
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(slurp(path("b.svg")), slurp(path("a.svg")));
     EXPECT_EQ(slurp(path("b.json")), slurp(path("a.json")));
@@ -35,7 +37,8 @@ TEST_F(CliConfig, ReplayFromTheSvgAndTheJsonGivesTheSameBytes) {
 
 TEST_F(CliConfig, FlagsOverrideRecordedValuesInAnyOrder) {
   ASSERT_EQ(run("-q draw " + kBunny + " --size 96x96 --rho-max 4 --alpha 0.3 -o " + path("a.svg")).status, 0);
-  for (const std::string& flags : {"--rho-max 5 --config " + path("a.svg"), "--config " + path("a.svg") + " --rho-max 5"}) {
+  for (const std::string& flags :
+       {"--rho-max 5 --config " + path("a.svg"), "--config " + path("a.svg") + " --rho-max 5"}) {
     const CommandRun r = run("draw --print-config " + flags);
     ASSERT_EQ(r.status, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);

@@ -1,5 +1,7 @@
 // The option table (options_table.h): every field of DrawOptions has an entry, and the JSON record replays exactly.
 
+#include "pcsketch/options_table.h"
+
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -8,7 +10,6 @@
 #include <utility>
 
 #include "pcsketch/core/error.h"
-#include "pcsketch/options_table.h"
 #include "pcsketch/pipeline.h"
 #include "pcsketch/validate.h"
 
@@ -23,8 +24,10 @@ struct Any {
 
 template <class T, class... A>
 constexpr std::size_t field_count() {
-  if constexpr (requires { T{std::declval<A>()..., Any{}}; }) return field_count<T, A..., Any>();
-  else return sizeof...(A);
+  if constexpr (requires { T{std::declval<A>()..., Any{}}; })
+    return field_count<T, A..., Any>();
+  else
+    return sizeof...(A);
 }
 
 /// The distinct member names directly under `prefix` among the table's keys (leaves and nested structs).
@@ -96,7 +99,7 @@ nlohmann::json other_value(const options::Option& option, const nlohmann::json& 
   const options::Range& r = option.range;
   for (const double candidate : {base * 0.5, base + 1, base - 1, 0.5, 2.0, r.hi, r.lo, (r.lo + r.hi) / 2}) {
     const nlohmann::json v = option.type == Type::Integer ? nlohmann::json(static_cast<std::int64_t>(candidate))
-                             : option.type == Type::List ? nlohmann::json{candidate, candidate / 2}
+                             : option.type == Type::List  ? nlohmann::json{candidate, candidate / 2}
                                                           : nlohmann::json(candidate);
     if (valid(v)) return v;
   }
