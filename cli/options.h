@@ -1,17 +1,14 @@
 #pragma once
-// Flag blocks shared by several subcommands: one registration per option struct, so `features` and `draw` accept
-// the same names, checks and defaults and describe them in the same words.
+// Flag blocks shared by several subcommands. The option flags come from the option table (pcsketch/options_table.h),
+// so `features`, `draw` and the Python module accept the same names, checks and defaults in the same words; the
+// input flags and the few options a table entry cannot parse (--file-normals, --max-memory) are written here.
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <functional>
-#include <map>
 #include <optional>
 #include <string>
-#include <vector>
 
-#include "pcsketch/differential/surface.h"
-#include "pcsketch/features/ridge_valley_lines.h"
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/options_table.h"
 #include "pcsketch/pipeline.h"
