@@ -1,5 +1,7 @@
 #include "config.h"
 
+#include <algorithm>
+#include <array>
 #include <fstream>
 #include <sstream>
 
@@ -10,6 +12,12 @@
 namespace pcsketch::cli {
 
 namespace {
+
+/// The flags that choose the direction of sight (cli/views.cpp) and the camera fields that hold it.
+constexpr std::array<const char*, 7> kSightFlags = {"--view",   "--azimuth", "--elevation", "--eye",
+                                                    "--target", "--views",   "--turntable"};
+constexpr std::array<std::string_view, 6> kSightKeys = {"camera.direction",     "camera.named", "camera.azimuth_deg",
+                                                        "camera.elevation_deg", "camera.eye",   "camera.target"};
 
 /// The text of an SVG's <desc>, with the four entities the SVG writer escapes (render/svg.cpp) undone.
 std::string svg_desc(const std::string& svg, const std::string& path) {
@@ -68,9 +76,16 @@ DrawOptions with_config(const nlohmann::json& config, const std::string& path, c
     throw Error(FileLoc{path, {}, {}}, e.what());
   }
   DrawOptions out = parsed;  // keeps what is not an option (the progress callback)
+  // The direction of sight is one choice made by several flags: any of them given replaces the recorded one whole
+  // (a recorded --view left with --azimuth 30 given would otherwise be two sights).
+  const bool sight_given = std::any_of(kSightFlags.begin(), kSightFlags.end(), [&](const char* name) {
+    const CLI::Option* flag = cmd.get_option_no_throw(name);
+    return flag != nullptr && flag->count() > 0;
+  });
   for (const options::Option& o : options::table()) {
     const CLI::Option* flag = o.flag.empty() ? nullptr : cmd.get_option_no_throw(o.flag);
     if (flag != nullptr && flag->count() > 0) continue;
+    if (sight_given && std::find(kSightKeys.begin(), kSightKeys.end(), o.key) != kSightKeys.end()) continue;
     try {
       options::check(o, o.get(recorded));  // a bad recorded value is the file's fault, not the command line's
     } catch (const OptionError& e) {

@@ -46,6 +46,12 @@ TEST_F(CliConfig, FlagsOverrideRecordedValuesInAnyOrder) {
     EXPECT_EQ(j["features"]["detection"]["ridge_threshold_alpha"], 0.3) << flags;  // recorded, not given
     EXPECT_EQ(j["camera"]["width"], 96) << flags;
   }
+  // A sight flag replaces the recorded sight whole: the recorded named view does not conflict with --azimuth.
+  ASSERT_EQ(run("-q draw " + kBunny + " --size 96x96 --view left -o " + path("left.svg")).status, 0);
+  const CommandRun turned = run("draw --print-config --config " + path("left.svg") + " --azimuth 30");
+  ASSERT_EQ(turned.status, 0) << turned.err;
+  EXPECT_EQ(nlohmann::json::parse(turned.out)["camera"]["named"], nullptr);
+  EXPECT_EQ(nlohmann::json::parse(turned.out)["camera"]["azimuth_deg"], 30.0);
   // Setting a flag to its default still overrides the record.
   const CommandRun r = run("draw --config " + path("a.svg") + " --rho-max 3 --print-config");
   EXPECT_EQ(nlohmann::json::parse(r.out)["thickness"]["rho_max"], 3.0);
