@@ -14,9 +14,10 @@
 #include "pcsketch/validate.h"
 
 namespace pcsketch {
-namespace {
+namespace field_probe {
 
-/// Converts to any type: `T{Any{}, Any{}, …}` compiles for as many initialisers as the aggregate T has members.
+/// Converts to any type (outside the anonymous namespace: its conversion is declared only, never defined or called):
+/// `T{Any{}, Any{}, …}` compiles for as many initialisers as the aggregate T has members.
 struct Any {
   template <class T>
   operator T&() const;  // never defined: only used in unevaluated requires-expressions
@@ -29,6 +30,12 @@ constexpr std::size_t field_count() {
   else
     return sizeof...(A);
 }
+
+}  // namespace field_probe
+
+namespace {
+
+using field_probe::field_count;
 
 /// The distinct member names directly under `prefix` among the table's keys (leaves and nested structs).
 std::size_t table_children(const std::string& prefix) {
