@@ -18,8 +18,9 @@
 
 // The JSON key is the member path spelled in the accessor, so the two cannot drift apart: a macro is the one way to
 // have both from one spelling.
-#define PCSKETCH_OPTION(path) \
-#path, [](DrawOptions & o) -> auto& { return o.path; }
+// clang-format off
+#define PCSKETCH_OPTION(path) #path, [](DrawOptions& o) -> auto& { return o.path; }
+// clang-format on
 
 namespace pcsketch::options::detail {
 

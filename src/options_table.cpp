@@ -31,6 +31,13 @@ nlohmann::json::json_pointer pointer(const std::string& key) {
   return nlohmann::json::json_pointer(path);
 }
 
+/// The entry of `key` (a JSON path), or nullptr.
+const Option* find_key(const std::string& key) {
+  for (const Option& o : table())
+    if (o.key == key) return &o;
+  return nullptr;
+}
+
 /// Sets every option under `json`, whose path in the options is `prefix` ("" at the top).
 void read_object(const nlohmann::json& json, const std::string& prefix, DrawOptions& options) {
   if (!json.is_object()) throw Error((prefix.empty() ? "the options" : prefix) + ": expected an object");
@@ -72,18 +79,6 @@ const std::vector<Option>& table() {
     return out;
   }();
   return entries;
-}
-
-const Option* find_key(const std::string& key) {
-  for (const Option& o : table())
-    if (o.key == key) return &o;
-  return nullptr;
-}
-
-const Option* find_flag(const std::string& flag) {
-  for (const Option& o : table())
-    if (o.flag == flag) return &o;
-  return nullptr;
 }
 
 void check(const Option& option, const nlohmann::json& value) {

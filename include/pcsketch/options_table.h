@@ -43,7 +43,7 @@ enum class Cli {
 /// One option.
 struct Option {
   std::string key;   ///< JSON path in DrawOptions::to_json, the member path: "features.detection.ridge_threshold_alpha"
-  std::string flag;  ///< CLI flag ("--alpha"); empty: JSON and Python config only
+  std::string flag;  ///< CLI flag ("--alpha"); empty: set from JSON (--config) or C++ only
   std::string group;  ///< --help section and docs/parameters.md heading
   Type type = Type::Number;
   bool nullable = false;  ///< std::optional: null (JSON) or absent (CLI) leaves it unset
@@ -62,10 +62,6 @@ struct Option {
 
 /// Every option of DrawOptions (not progress), in --help order.
 const std::vector<Option>& table();
-
-/// The entry of `key` (a JSON path) or of `flag`, or nullptr.
-const Option* find_key(const std::string& key);
-const Option* find_flag(const std::string& flag);
 
 /// Checks one JSON value against the option's range (each element of a list or vector) and finiteness.
 /// @throws OptionError naming Option::name(), e.g. "--alpha: must be in (0, 1), got 0".
