@@ -7,15 +7,18 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "commands.h"
+#include "config.h"
 #include "options.h"
 #include "views.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/io/read_cloud.h"
+#include "pcsketch/options_table.h"
 #include "pcsketch/pipeline.h"
 #include "pcsketch/render/write.h"
 #include "pcsketch/validate.h"
@@ -32,6 +35,8 @@ struct DrawArgs {
   std::string json;
   std::string stages;
   bool timings = false;
+  std::string config;         ///< --config: options recorded with a drawing, under the flags given
+  bool print_config = false;  ///< --print-config: write the resolved options, draw nothing
   ViewRequest views;
   io::ReadOptions read;
   DrawOptions options;
@@ -144,7 +149,17 @@ void draw_one_view(const DrawArgs& args, const Prepared& prepared, const NamedCa
   });
 }
 
-void run_draw(DrawArgs& args, const GlobalOptions& global) {
+/// The options as resolved (config, flags, first view's camera) on stdout as JSON, the form --config reads.
+void print_config(DrawArgs& args) {
+  args.options.camera = resolve_views(args.options.camera, args.views).front().camera;
+  validate(args.options);
+  std::cout << options::to_json(args.options).dump(2) << "\n";
+}
+
+void run_draw(DrawArgs& args, const CLI::App& cmd, const GlobalOptions& global) {
+  if (!args.config.empty()) args.options = with_config(read_config(args.config), args.config, args.options, cmd);
+  if (args.print_config) return print_config(args);
+  if (args.input.empty()) throw OptionError("INPUT", "is required (a point cloud to draw)");
   if (args.outputs.empty() && args.json.empty() && args.stages.empty())
     throw OptionError("draw", "nothing to write: give -o OUT.svg|png|pdf, --json OUT.json or --stages DIR");
   if (!args.json.empty()) args.outputs.push_back(args.json);
@@ -183,8 +198,12 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   CLI::App* cmd = app.add_subcommand(
       "draw", "Sketch drawing of a point cloud: contours, ridges, valleys, thickness, shadow hatching (paper Fig. 2)");
   cmd->fallthrough();  // the global flags (-q, --threads) may also follow the subcommand
-  cmd->add_option("INPUT", args->input, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)")
-      ->required();
+  cmd->add_option("INPUT", args->input, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ (mesh vertices)");
+  cmd->add_option("--config", args->config,
+                  "Options recorded with a drawing (its .svg or .json) or written by --print-config; flags given "
+                  "here override them");
+  cmd->add_flag("--print-config", args->print_config,
+                "Write the resolved options as JSON to stdout (the form --config reads) and draw nothing");
   add_read_options(cmd, args->read);
   add_memory_option(cmd, args->options.max_memory_gb);
   cmd->add_option("-o,--output", args->outputs, "Output file; format from the extension: .svg .png .pdf (repeatable)");
@@ -195,190 +214,7 @@ void add_draw_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_flag("--timings", args->timings, "Print seconds per stage (the paper's Table 2 rows marked *)");
   add_camera_options(cmd, args->options.camera, args->views);
   add_draw_options(cmd, args->options);
-  cmd->callback([args, &global] { run_draw(*args, global); });
-}
-
-void add_draw_options(CLI::App* cmd, DrawOptions& o) {
-  add_surface_options(cmd, o.surface);
-  add_ridge_valley_options(cmd, o.features);
-
-  // Contours and visibility (paper §IV.B).
-  const std::string view_group = "Contours and visibility (paper IV.B)";
-  cmd->add_option("--z-max", o.view.contours.z_max_factor,
-                  "Paper's z_max: largest distance of the next contour point from the direction line, units of h")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber)
-      ->group(view_group);
-  cmd->add_option("--contour-radius", o.view.contours.radius_factor,
-                  "2D neighbourhood radius of the boundary test, units of the projected spacing")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber)
-      ->group(view_group);
-  add_enum(cmd, "--contour-connection", o.view.contours.connection,
-           {{"outermost", view::OutlineConnection::Outermost},
-            {"direction-guided", view::OutlineConnection::DirectionGuided}},
-           "Outline tracing: outermost (no zig-zags) or direction-guided (the paper's)")
-      ->group(view_group);
-  cmd->add_flag("!--no-interior-contours", o.view.contours.interior,
-                "Only the outline: no occluding contours inside it (the paper's contours)")
-      ->group(view_group);
-  cmd->add_option("--contour-persistence", o.view.contours.persistence_factor,
-                  "Interior contours only where n.v reaches this many times the normals' noise on both sides (0: at "
-                  "every sign change)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(view_group);
-  cmd->add_option("--denoised-contour-length", o.view.contours.denoised_min_length_factor,
-                  "On a denoised cloud, interior contours shorter than this many h are left out (noise squiggles)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(view_group);
-  cmd->add_flag("!--no-boundary-detection", o.boundary.enabled,
-                "No border of open scans: every point may be outline, and hole rims seen through are drawn as "
-                "contours")
-      ->group(view_group);
-  cmd->add_option("--boundary-gap", o.boundary.gap_threshold_deg,
-                  "A border point's neighbours leave a gap wider than this in its tangent plane, degrees")
-      ->capture_default_str()
-      ->group(view_group);
-  cmd->add_option("--boundary-min-size", o.boundary.min_size_factor,
-                  "Borders spanning less than this, units of h, are small holes: not drawn")
-      ->capture_default_str()
-      ->group(view_group);
-  cmd->add_option("--boundary-radius", o.boundary.tracing.radius_factor,
-                  "Tracing radius of boundary lines, units of h")
-      ->capture_default_str()
-      ->group(view_group);
-  cmd->add_flag("!--no-uneven-spacing", o.view.contours.adaptive_spacing,
-                "Outline lengths in units of the mean spacing everywhere (the paper's single radius), not of the "
-                "local spacing where the cloud is sparser")
-      ->group(view_group);
-  cmd->add_option("--self-offset", o.view.visibility.self_offset_factor,
-                  "Visibility rays start this far from a line vertex, units of h (past its own and its neighbours' "
-                  "discs)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(view_group);
-  cmd->add_flag("!--no-local-offset", o.view.visibility.offset_from_local_spacing,
-                "Self offset in units of h everywhere, not of the source point's disc where the cloud is sparser")
-      ->group(view_group);
-  cmd->add_flag("!--no-visibility-lift", o.view.visibility.lift_to_source_plane,
-                "Cast visibility rays from the line vertices themselves (the paper's), not lifted to the tangent "
-                "plane of their source points")
-      ->group(view_group);
-  add_enum(cmd, "--hidden-lines", o.render.hidden_lines,
-           {{"none", render::HiddenLines::None}, {"dashed", render::HiddenLines::Dashed}},
-           "Hidden lines: none, or dashed (thin grey, in their own SVG layer)")
-      ->group(view_group);
-
-  // Stroke thickness (paper §V).
-  const std::string thick = "Stroke thickness (paper V)";
-  add_enum(cmd, "--thickness", o.thickness.model,
-           {{"constant", stylize::ThicknessModel::Constant},
-            {"depth", stylize::ThicknessModel::Depth},
-            {"angle", stylize::ThicknessModel::Angle},
-            {"combined", stylize::ThicknessModel::Combined}},
-           "Width model: constant, depth (nearer thicker), angle (sharper bend thicker) or combined")
-      ->group(thick);
-  cmd->add_option("--rho-min", o.thickness.rho_min, "Paper's rho_min: thinnest stroke, pixels")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(thick);
-  cmd->add_option("--rho-max", o.thickness.rho_max, "Paper's rho_max: thickest stroke, pixels")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(thick);
-  cmd->add_option("--cofi", o.thickness.cofi, "Paper's cofi: factor on every width")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(thick);
-  cmd->add_flag("!--no-brush", o.thickness.brush, "No brush taper at the ends of lines")->group(thick);
-
-  // Line finish and fusion (paper Fig. 2(d)).
-  const std::string finish = "Line finish and fusion (paper Fig. 2(d))";
-  cmd->add_flag("!--no-fusion", o.fusion.enabled,
-                "Draw every line as traced; by default lines running alongside each other are drawn once (contour "
-                "over ridge/valley, outline over interior contour), the other kept in the JSON as fused_into")
-      ->group(finish);
-  cmd->add_option("--fusion-distance", o.fusion.distance_widths,
-                  "Lines closer than this are one, in pen widths (rho-max * cofi)")
-      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(finish);
-  cmd->add_option("--fusion-min-stretch", o.fusion.min_stretch_px,
-                  "Shortest stretch of two lines running together that is drawn once, pixels")
-      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(finish);
-  cmd->add_flag("!--no-smooth", o.finish.smooth, "Keep the traced vertices; by default lines are smoothed, corners kept")
-      ->group(finish);
-  cmd->add_option("--min-stroke-length", o.finish.min_length_px, "Lines seen over less than this are left out (a stub continuing a longer line stays), pixels")
-      ->capture_default_str()->check(CLI::NonNegativeNumber)->group(finish);
-
-  // Shadow region (paper §VI).
-  const std::string shade = "Shadows (paper VI)";
-  add_enum(cmd, "--shadow", o.shadow.mode,
-           {{"none", stylize::ShadowMode::None}, {"paper", stylize::ShadowMode::Paper},
-            {"attached", stylize::ShadowMode::Attached}, {"both", stylize::ShadowMode::Both}},
-           "none, paper (hatching between ridge/valley lines and their projection along the light), attached "
-           "(hatching of the surface facing away from the light) or both")->group(shade);
-  add_vec3(cmd, "--light", "Light travel direction X,Y,Z (default: 45 degrees to xoy, parallel to xoz, Fig. 13; see --light-fixed)",
-           [&o](const Vec3d& v) { o.shadow.light.direction = v.cast<float>(); })->group(shade);
-  cmd->add_option("--light-elevation", o.shadow.light.elevation_deg, "Light angle to the xoy plane, degrees")
-      ->capture_default_str()->group(shade);
-  cmd->add_option("--light-azimuth", o.shadow.light.azimuth_deg, "Light rotation around z, degrees (0: xoz plane)")
-      ->capture_default_str()->group(shade);
-  cmd->add_flag("!--light-fixed", o.shadow.light.follow_camera,
-                "Light direction in world axes; by default it is read in the camera's frame and turns with the view "
-                "(the same for the paper's +z view)")->group(shade);
-  cmd->add_option("--shadow-d", o.shadow.d, "Paper's d (eq. 14): hatch lines at t = k*d along the shadow")
-      ->capture_default_str()->check(CLI::PositiveNumber)->group(shade);
-  cmd->add_option("--shadow-k", o.shadow.k_set, "Paper's k set (eq. 14), e.g. --shadow-k 0.0625 0.125 0.25 0.5")
-      ->capture_default_str()->expected(1, 16)->group(shade);
-  cmd->add_option("--hatch-spacing", o.shadow.hatch_spacing_px, "Attached hatching: distance between lines, pixels")
-      ->capture_default_str()->check(CLI::PositiveNumber)->group(shade);
-  cmd->add_flag("!--no-shade-blocks", o.shadow.shade_blocks, "Paper mode: no grey blocks, hatch strokes only")
-      ->group(shade);
-  cmd->add_flag("!--shadow-over-background", o.shadow.clip_to_surface,
-                "Paper mode: draw the whole region between a line and its projection, also where the background "
-                "is seen through it; shading is not cut to the silhouette (default: only over the surface)")
-      ->group(shade);
-
-  // What is drawn and how it is written.
-  const std::string out = "Output";
-  cmd->add_flag("!--no-contours", o.lines.contours, "Leave out contours")->group(out);
-  cmd->add_flag("!--no-ridges", o.lines.ridges, "Leave out ridge lines")->group(out);
-  cmd->add_flag("!--no-valleys", o.lines.valleys, "Leave out valley lines")->group(out);
-  cmd->add_flag("!--no-hatching", o.lines.hatching, "Leave out shadow hatching and shading")->group(out);
-  cmd->add_flag("!--no-boundaries", o.lines.boundaries, "Leave out the border lines of open scans")->group(out);
-  cmd->add_flag("--plotter", o.render.plotter,
-                "Pen-plotter output: centre-lines of one width, no grey fills; strokes merged where their ends meet, "
-                "collinear hatching drawn once, dabs left out, each layer sorted to shorten pen-up travel")
-      ->group(out);
-  CLI::Option* pen_mm = cmd->add_option("--pen-width-mm,--pen-width", o.render.pen_width_mm,
-                                        "Plotter line width, page millimetres")
-                            ->capture_default_str()
-                            ->check(CLI::PositiveNumber)
-                            ->group(out);
-  cmd->add_option("--pen-width-px", o.render.pen_width,
-                  "Plotter line width in image pixels (what --pen-width meant before it took millimetres)")
-      ->check(CLI::PositiveNumber)
-      ->excludes(pen_mm)
-      ->group(out);
-  cmd->add_option("--min-stroke-mm", o.plotter.min_stroke_mm,
-                  "Plotter: leave out strokes shorter than this after merging, page millimetres (0 keeps all)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(out);
-  cmd->add_option("--merge-tolerance-mm", o.plotter.merge_tolerance_mm,
-                  "Plotter: join strokes whose ends are this close, page millimetres (0: only ends that coincide)")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber)
-      ->group(out);
-  cmd->add_flag("!--no-plot-sort", o.plotter.sort, "Plotter: keep the drawing order of strokes (no pen-travel sort)")
-      ->group(out);
-  cmd->add_option_function<double>(
-         "--page-width-mm", [&o](const double& w) { o.render.page_width_mm = w; },
-         "SVG/PDF page width in millimetres (default: the image size in CSS pixels)")
-      ->check(CLI::PositiveNumber)
-      ->group(out);
-  add_page_options(cmd, o.page);
+  cmd->callback([args, cmd, &global] { run_draw(*args, *cmd, global); });
 }
 
 }  // namespace pcsketch::cli

@@ -28,9 +28,7 @@ struct FeaturesArgs {
   std::string out_path;
   std::string lines_path;
   io::ReadOptions read;
-  differential::SurfaceOptions surface;
-  features::RidgeValleyOptions features;
-  std::optional<double> max_memory_gb;
+  DrawOptions options;  ///< only surface, features and max_memory_gb are used (the flags shared with draw)
   bool ascii = false;
 };
 
@@ -91,7 +89,7 @@ void write_lines_json(const std::string& path, const PointCloud& cloud, const di
                               {"valley_threshold", d.valley_threshold},
                               {"ridge_points", d.ridge_points},
                               {"valley_points", d.valley_points},
-                              {"parameters", features::to_json(args.features)},
+                              {"parameters", options::to_json(args.options)["features"]},
                               {"timings_s",
                                {{"detection", result.timings.detection},
                                 {"tracing", result.timings.tracing},
@@ -116,27 +114,23 @@ void check_outputs(const FeaturesArgs& args) {
 
 void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   // The flags shared with draw get draw's checks, before the input is read.
-  DrawOptions checked;
-  checked.surface = args.surface;
-  checked.features = args.features;
-  checked.max_memory_gb = args.max_memory_gb;
-  validate(checked);
+  validate(args.options);
   check_outputs(args);
   const ProgressFn progress = make_progress(global);
   io::ReadOptions read_options = args.read;
   read_options.progress = progress;
   io::ReadResult read = io::read_point_cloud(args.in_path, read_options);
   io::check_scale(read.cloud, args.in_path);
-  validate_memory(point_bytes(args.surface, read.cloud.size()), args.max_memory_gb,
+  validate_memory(point_bytes(args.options.surface, read.cloud.size()), args.options.max_memory_gb,
                   args.in_path + ": " + std::to_string(read.cloud.size()) + " points (--neighbours " +
-                      std::to_string(args.surface.neighbourhood.k) + ")");
+                      std::to_string(args.options.surface.neighbourhood.k) + ")");
   print_warnings(global, read.warnings);
   PointCloud& cloud = read.cloud;
-  differential::SurfaceOptions surface_options = args.surface;
+  differential::SurfaceOptions surface_options = args.options.surface;
   surface_options.progress = progress;
   const differential::Surface surface = differential::analyse_surface(cloud, surface_options);
   print_warnings(global, surface.warnings);
-  features::RidgeValleyOptions features_options = args.features;
+  features::RidgeValleyOptions features_options = args.options.features;
   features_options.progress = progress;
   const features::RidgeValleyLines result = features::extract_ridge_valley_lines(cloud, surface, features_options);
   print_warnings(global, result.warnings);
@@ -188,7 +182,7 @@ void add_features_command(CLI::App& app, const GlobalOptions& global) {
       "features", "Ridge/valley points and lines (paper IV.A): per-point k1, k2, label as PLY scalar fields, lines as JSON");
   cmd->add_option("IN", args->in_path, "Point cloud: PLY, LAS, XYZ/PTS/TXT/CSV, PCD, OFF or OBJ")->required();
   add_read_options(cmd, args->read);
-  add_memory_option(cmd, args->max_memory_gb);
+  add_memory_option(cmd, args->options.max_memory_gb);
   cmd->add_option("-o,--output", args->out_path,
                   "Output PLY: x y z, nx ny nz, k1 k2 k_feature (float, 1/model units), label (uchar: 0 none, "
                   "1 ridge, 2 valley, 3 outlier left out of the analysis); every point of the input, in its order")
@@ -196,8 +190,7 @@ void add_features_command(CLI::App& app, const GlobalOptions& global) {
   cmd->add_option("--lines", args->lines_path, "Also write the ridge/valley polylines (world coordinates) as JSON");
   cmd->add_flag("--ascii", args->ascii, "Write ascii PLY instead of binary little-endian");
 
-  add_surface_options(cmd, args->surface);
-  add_ridge_valley_options(cmd, args->features);
+  add_analysis_flags(cmd, args->options);
   cmd->callback([args, &global] { run_features(*args, global); });
 }
 

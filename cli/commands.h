@@ -36,5 +36,6 @@ void add_info_command(CLI::App& app, const GlobalOptions& global);
 void add_sample_command(CLI::App& app, const GlobalOptions& global);
 void add_draw_command(CLI::App& app, const GlobalOptions& global);
 void add_features_command(CLI::App&, const GlobalOptions&);
+void add_parameters_command(CLI::App& app);
 
 }  // namespace pcsketch::cli

@@ -15,20 +15,6 @@ namespace pcsketch::cli {
 
 namespace {
 
-template <class T>
-constexpr bool is_optional = false;
-template <class T>
-constexpr bool is_optional<std::optional<T>> = true;
-
-/// An option with a check on its value, in `group`; --help shows its default (an unset override has none).
-template <class T>
-CLI::Option* add_checked(CLI::App* cmd, const std::string& name, T& target, const std::string& help,
-                         const CLI::Validator& check, const std::string& group) {
-  CLI::Option* option = cmd->add_option(name, target, help);
-  if constexpr (!is_optional<T>) option->capture_default_str();
-  return option->check(check)->group(group);
-}
-
 // "xmin,ymin,zmin,xmax,ymax,zmax" → box; throws CLI::ValidationError (exit 1) otherwise.
 io::CropBox parse_crop(const std::string& text) {
   std::istringstream in(text);
@@ -44,6 +30,11 @@ io::CropBox parse_crop(const std::string& text) {
   if ((box.min.array() > box.max.array()).any())
     throw CLI::ValidationError("--crop", "each minimum must be at most its maximum, got '" + text + "'");
   return box;
+}
+
+/// Surface analysis and ridge/valley options: the flags `features` shares with `draw`.
+bool analysis_option(const options::Option& opt) {
+  return opt.key.starts_with("surface.") || opt.key.starts_with("features.");
 }
 
 }  // namespace
@@ -98,12 +89,10 @@ std::string describe_reduction(const io::ReadResult& read) {
   return out;
 }
 
-void add_surface_options(CLI::App* cmd, differential::SurfaceOptions& surface) {
-  const std::string group = "Surface analysis";
-  add_checked(cmd, "--neighbours", surface.neighbourhood.k, "Paper's k: neighbours per point (normals, curvature)",
-              CLI::Range(3, 256), group);
-  cmd->add_flag("--recompute-normals", surface.recompute_normals, "Ignore the file's normals, estimate them by PCA")
-      ->group(group);
+void add_analysis_flags(CLI::App* cmd, DrawOptions& o) {
+  add_table_flags(cmd, o, [](const options::Option& opt) { return analysis_option(opt); });
+  // One flag, two fields: surface.orient_file_normals and surface.file_normal_disagreement.
+  differential::SurfaceOptions& surface = o.surface;
   cmd->add_option_function<std::string>(
          "--file-normals",
          [&surface](const std::string& mode) {
@@ -114,102 +103,14 @@ void add_surface_options(CLI::App* cmd, differential::SurfaceOptions& surface) {
          "trust (kept as they are) or orient (always re-oriented)")
       ->check(CLI::IsMember({"auto", "trust", "orient"}))
       ->default_str("auto")
-      ->group(group);
-  cmd->add_flag("!--keep-outliers", surface.outliers.enabled,
-                "Draw every point (default: stray points far sparser than the cloud, and detached clumps, are left "
-                "out)")
-      ->group(group);
-  add_checked(cmd, "--outlier-density", surface.outliers.density_factor,
-              "A point is stray when its mean distance to its 8 nearest exceeds this times the cloud's median and no "
-              "denser point is near",
-              CLI::Range(1.0, 1000.0), group);
-  add_checked(cmd, "--outlier-min-cluster", surface.outliers.min_cluster,
-              "Detached clumps with fewer points are left out (at least 0.05% of the cloud)", CLI::Range(1, 1 << 30),
-              group);
-  cmd->add_flag("!--no-denoise", surface.denoise.enabled,
-                "Keep noisy points where they are (default: a cloud whose estimated noise exceeds --denoise-trigger "
-                "is denoised, edges kept sharp)")
-      ->group(group);
-  add_checked(cmd, "--denoise-trigger", surface.denoise.min_noise_factor,
-              "Denoise when the estimated noise sigma exceeds this many h", CLI::Range(0.0, 100.0), group);
-  add_checked(cmd, "--denoise-iterations", surface.denoise.iterations,
-              "Denoising rounds (normals filtered, points moved onto their neighbours' tangent planes)",
-              CLI::Range(1, 100), group);
-  add_checked(cmd, "--denoise-passes", surface.denoise.normal_passes,
-              "Bilateral normal-filtering passes per denoising round", CLI::Range(0, 100), group);
-  add_checked(cmd, "--denoise-cutoff", surface.denoise.normal_cutoff,
-              "Normals differing by 1-|cos| of at least this are not averaged (0.15: creases over 32 degrees stay "
-              "sharp)",
-              CLI::Range(0.001, 1.0), group);
-  // Orientation runs on estimated normals, and on file normals when --file-normals re-orients them.
-  add_enum(cmd, "--orientation", surface.orientation.criterion,
-           {{"reflect", differential::OrientCriterion::Reflect}, {"parallel", differential::OrientCriterion::Parallel}},
-           "Normal orientation test: reflect (König-Gumhold, crosses sharp edges) or parallel (Hoppe's |n_i.n_j|)")
-      ->group(group);
-  add_enum(cmd, "--outward", surface.orientation.outward,
-           {{"volume", differential::OutwardRule::Volume},
-            {"farthest", differential::OutwardRule::FarthestPoint},
-            {"none", differential::OutwardRule::None}},
-           "Turning each part of the cloud outward: volume (sum of n.(p - centroid) > 0, robust), farthest (the "
-           "farthest point faces away, Hoppe's) or none")
-      ->group(group);
+      ->group("Surface analysis");
 }
 
-void add_ridge_valley_options(CLI::App* cmd, features::RidgeValleyOptions& options) {
-  features::DetectionOptions& det = options.detection;
-  const std::string dgroup = "Ridge/valley detection (paper IV.A)";
-  add_checked(cmd, "--alpha", det.ridge_threshold_alpha,
-              "Paper's alpha: a ridge/valley point's |k| is at least alpha times the extreme curvature of its "
-              "side (smaller: more points)",
-              CLI::Range(0.0, 1.0), dgroup);
-  add_enum(cmd, "--detection", det.rule,
-           {{"salient", features::DetectionRule::Salient}, {"paper", features::DetectionRule::Paper}},
-           "salient (paper's rule + saliency floors and non-maximum suppression) or paper (the plain rule)")
-      ->group(dgroup);
-  add_enum(cmd, "--extreme", det.extreme,
-           {{"percentile", features::CurvatureExtreme::Percentile}, {"minmax", features::CurvatureExtreme::MinMax}},
-           "Extreme curvature of each side: percentile (robust) or minmax (the paper's)")
-      ->group(dgroup);
-  add_checked(cmd, "--extreme-percentile", det.extreme_percentile, "Percentile taken as the extreme, 0-100",
-              CLI::Range(0.0, 100.0), dgroup);
-  add_checked(cmd, "--saliency-floor", det.saliency_floor,
-              "Salient rule: |k|*h must reach this (radius of curvature at most h/floor)", CLI::NonNegativeNumber,
-              dgroup);
-  add_checked(cmd, "--median-factor", det.median_factor, "Salient rule: |k| must reach this times the median |k|",
-              CLI::NonNegativeNumber, dgroup);
-  cmd->add_flag("!--no-suppression", det.non_maximum_suppression,
-                "Salient rule: keep the whole band of high curvature (no non-maximum suppression across ridges)")
-      ->group(dgroup);
-  add_checked(cmd, "--suppression-cone", det.suppression_cone_deg,
-              "Half-angle (degrees) around the principal direction in which neighbours compete", CLI::Range(1.0, 89.0),
-              dgroup);
-
-  features::TraceOptions& tr = options.tracing;
-  const std::string tgroup = "Ridge/valley tracing (paper IV.A)";
-  add_checked(cmd, "--radius", tr.radius_factor, "Paper's r: tracing radius in units of h (mean spacing)",
-              CLI::PositiveNumber, tgroup);
-  add_checked(cmd, "--radius-abs", tr.radius, "Tracing radius r in model units (overrides --radius)",
-              CLI::PositiveNumber, tgroup);
-  add_checked(cmd, "--corridor", tr.corridor_fraction, "Corridor half-width around the direction, fraction of r",
-              CLI::Range(0.01, 1.0), tgroup);
-  add_checked(cmd, "--max-turn", tr.max_turn_deg, "Sharpest turn per step (degrees) before a line ends",
-              CLI::Range(1.0, 90.0), tgroup);
-
-  features::JoinOptions& jo = options.joining;
-  const std::string jgroup = "Ridge/valley joining (paper IV.A)";
-  add_checked(cmd, "--join-distance", jo.join_distance_alpha,
-              "Join endpoints closer than this times r (paper: alpha*r)", CLI::NonNegativeNumber, jgroup);
-  add_checked(cmd, "--beta", jo.join_angle_beta_deg,
-              "Paper's beta: largest angle between end tangents (facing each other) when joining lines, degrees",
-              CLI::Range(0.0, 90.0), jgroup);
-  add_checked(cmd, "--min-length", jo.min_length_factor, "Drop ridge/valley lines shorter than this, in units of h",
-              CLI::NonNegativeNumber, jgroup);
-  add_checked(cmd, "--min-length-abs", jo.min_length, "Minimum line length in model units (overrides --min-length)",
-              CLI::NonNegativeNumber, jgroup);
-  add_checked(cmd, "--smooth", jo.smoothing_iterations, "Laplacian smoothing passes (endpoints fixed), 0 = off",
-              CLI::Range(0, 100), jgroup);
-  add_checked(cmd, "--smooth-weight", jo.smoothing_weight, "Weight of one smoothing pass, 0-1", CLI::Range(0.0, 1.0),
-              jgroup);
+void add_draw_options(CLI::App* cmd, DrawOptions& o) {
+  add_analysis_flags(cmd, o);
+  add_table_flags(cmd, o, [](const options::Option& opt) { return !analysis_option(opt); });
+  cmd->get_option("--pen-width-px")->excludes("--pen-width-mm");
+  add_scale_option(cmd, o.page);
 }
 
 void add_memory_option(CLI::App* cmd, std::optional<double>& target) {

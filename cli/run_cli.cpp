@@ -28,6 +28,7 @@ int run_cli(int argc, const char* const* argv) {
   add_sample_command(app, global);
   add_draw_command(app, global);
   add_features_command(app, global);
+  add_parameters_command(app);
 
   std::optional<oneapi::tbb::global_control> thread_limit;
   app.parse_complete_callback([&] {

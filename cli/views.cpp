@@ -106,9 +106,6 @@ void add_camera_options(CLI::App* cmd, view::CameraOptions& c, ViewRequest& requ
   add_vec3(cmd, "--target", "Perspective target point X,Y,Z (world)", [&c](const Vec3d& v) {
     c.target = v;
   })->group(group);
-  cmd->add_option("--fov", c.fov_deg, "Perspective vertical field of view, degrees")
-      ->capture_default_str()
-      ->group(group);
   cmd->add_option_function<std::string>(
          "--size",
          [&c](const std::string& s) {
@@ -121,9 +118,6 @@ void add_camera_options(CLI::App* cmd, view::CameraOptions& c, ViewRequest& requ
            c.height = h;
          },
          "Image size WxH in pixels (default 1024x1024)")
-      ->group(group);
-  cmd->add_option("--margin", c.margin, "Empty border, fraction of the smaller image side")
-      ->capture_default_str()
       ->group(group);
 }
 

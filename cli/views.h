@@ -38,8 +38,9 @@ struct NamedCamera {
   view::CameraOptions camera;
 };
 
-/// The camera flags (--view, --up, --azimuth, --elevation, --perspective, --eye, --target, --fov, --size, --margin,
-/// --views, --turntable) bound to `camera` and `request`, which must outlive the parse.
+/// The camera flags the option table cannot bind (--view, --up, --azimuth, --elevation, --perspective, --eye,
+/// --target, --size, --views, --turntable) bound to `camera` and `request`, which must outlive the parse; --fov and
+/// --margin come with add_draw_options.
 void add_camera_options(CLI::App* cmd, view::CameraOptions& camera, ViewRequest& request);
 
 /// The views to draw, in order (one for --sheet: its camera gives up, size and margin). `--up` with no view flag is the three-quarter view; `--views` and `--turntable`

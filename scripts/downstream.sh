@@ -20,6 +20,17 @@ if grep -q nanoflann "$config"/pcsketchTargets*.cmake; then
 fi
 "$tmp/prefix/bin/pcsketch" --version > /dev/null
 
+# The Python module, when the build has one, is installed too and imports from the prefix alone.
+if compgen -G "build/ci/python/pcsketch*.so" > /dev/null; then
+  module=$(find "$tmp/prefix" -name 'pcsketch*.so' -print -quit)
+  if [ -z "$module" ]; then
+    echo "downstream: the Python module was built but not installed" >&2
+    exit 1
+  fi
+  PYTHONPATH=$(dirname "$module") /usr/bin/python3 -c \
+    'import sys, pcsketch; assert pcsketch.__file__.startswith(sys.argv[1]), pcsketch.__file__' "$tmp/prefix"
+fi
+
 cmake -S tests/downstream -B "$tmp/cmake" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$tmp/prefix" \
   > /dev/null
 cmake --build "$tmp/cmake" > /dev/null
@@ -47,4 +58,4 @@ if(NOT TARGET pcsketch::pcsketch OR TARGET test_core OR TARGET bench_view OR TAR
 endif()
 EOF
 cmake -S "$tmp/sub" -B "$tmp/sub/build" -G Ninja > /dev/null
-echo "downstream: find_package(pcsketch) and pkg-config builds ran; as a subproject, the library alone"
+echo "downstream: find_package(pcsketch) and pkg-config builds ran; the Python module imports from the prefix; as a subproject, the library alone"

@@ -6,6 +6,7 @@
 
 #include "core/progress.h"
 #include "pcsketch/core/error.h"
+#include "pcsketch/options_table.h"
 #include "pcsketch/stylize/thickness.h"
 #include "pcsketch/validate.h"
 
@@ -18,45 +19,6 @@ using pcsketch::detail::with_progress;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-nlohmann::json vec_json(const Vec3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
-
-nlohmann::json camera_options_json(const view::CameraOptions& c) {
-  nlohmann::json j = {{"projection", c.projection == view::Projection::Orthographic ? "orthographic" : "perspective"},
-                      {"direction", c.direction ? vec_json(*c.direction) : nlohmann::json(nullptr)},
-                      {"view", c.named ? nlohmann::json(view::to_string(*c.named)) : nlohmann::json(nullptr)},
-                      {"up", vec_json(c.up)},
-                      {"fov_deg", c.fov_deg},
-                      {"width", c.width},
-                      {"height", c.height},
-                      {"margin", c.margin}};
-  j["azimuth_deg"] = c.azimuth_deg ? nlohmann::json(*c.azimuth_deg) : nlohmann::json(nullptr);
-  j["elevation_deg"] = c.elevation_deg ? nlohmann::json(*c.elevation_deg) : nlohmann::json(nullptr);
-  j["eye"] = c.eye ? vec_json(*c.eye) : nlohmann::json(nullptr);
-  j["target"] = c.target ? vec_json(*c.target) : nlohmann::json(nullptr);
-  return j;
-}
-
-nlohmann::json surface_options_json(const differential::SurfaceOptions& s) {
-  return {{"neighbours_k", s.neighbourhood.k},
-          {"normals_k", s.normals.k},
-          {"curvature_k", s.curvature.k},
-          {"recompute_normals", s.recompute_normals},
-          {"orient_file_normals", s.orient_file_normals},
-          {"file_normal_disagreement", s.file_normal_disagreement},
-          {"orientation", s.orientation.criterion == differential::OrientCriterion::Reflect ? "reflect" : "parallel"},
-          {"outward", s.orientation.outward == differential::OutwardRule::Volume          ? "volume"
-                      : s.orientation.outward == differential::OutwardRule::FarthestPoint ? "farthest"
-                                                                                          : "none"},
-          {"reorder", s.reorder},
-          {"outliers", s.outliers.to_json()},
-          {"denoise",
-           {{"enabled", s.denoise.enabled},
-            {"min_noise_factor", s.denoise.min_noise_factor},
-            {"iterations", s.denoise.iterations},
-            {"normal_passes", s.denoise.normal_passes},
-            {"normal_cutoff", s.denoise.normal_cutoff}}}};
 }
 
 /// Who is drawn where two lines run together: the outline, then interior contours, borders, ridges and valleys.
@@ -109,8 +71,9 @@ Drawing empty_drawing(const view::Camera& camera, const Vec3d& origin, const nlo
 /// The recorded parameters: every option plus the values the relative defaults resolved to on this cloud.
 nlohmann::json parameters_json(const Prepared& prepared, const DrawOptions& options,
                                const view::CameraOptions& camera) {
-  nlohmann::json j = options.to_json();
-  j["camera"] = camera_options_json(camera);
+  DrawOptions drawn = options;
+  drawn.camera = camera;
+  nlohmann::json j = options::to_json(drawn);
   j["resolved"] = {{"points", prepared.cloud.size()},
                    {"spacing_h", prepared.surface.spacing},
                    {"outliers_removed", prepared.surface.outliers.size()},
@@ -210,26 +173,7 @@ view::ViewResult compute_view(const Prepared& prepared, const view::Camera& came
 
 }  // namespace
 
-nlohmann::json DrawOptions::to_json() const {
-  return {{"surface", surface_options_json(surface)},
-          {"features", features::to_json(features)},
-          {"boundary", boundary.to_json()},
-          {"scene", {{"disc_radius_factor", scene.disc_radius_factor}}},
-          {"camera", camera_options_json(camera)},
-          {"view", view.to_json()},
-          {"finish", finish.to_json()},
-          {"thickness", thickness.to_json()},
-          {"fusion", fusion.to_json()},
-          {"shadow", shadow.to_json()},
-          {"render", render.to_json()},
-          {"plotter", plotter.to_json()},
-          {"page", page.to_json()},
-          {"lines",
-           {{"contours", lines.contours}, {"ridges", lines.ridges}, {"valleys", lines.valleys},
-            {"hatching", lines.hatching}, {"boundaries", lines.boundaries}}},
-          {"min_points", min_points},
-          {"max_memory_gb", max_memory_gb ? nlohmann::json(*max_memory_gb) : nlohmann::json()}};
-}
+nlohmann::json DrawOptions::to_json() const { return options::to_json(*this); }
 
 Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   validate(options);
@@ -322,8 +266,9 @@ DrawResult draw_sheet(const Prepared& prepared, const view::CameraOptions& camer
   }
   auto [sheet, scale] = page::compose_sheet(std::move(views), arrangement);
   result.drawing = std::move(sheet);
-  result.drawing.parameters["page"] = options.page.to_json();
-  result.drawing.parameters["render"] = options.render.to_json();
+  const nlohmann::json recorded = options.to_json();  // the sheet's own page and render, not its views'
+  result.drawing.parameters["page"] = recorded["page"];
+  result.drawing.parameters["render"] = recorded["render"];
   DrawOptions sheet_options = options;
   if (options.page.north_arrow) {
     result.warnings.push_back("--north-arrow: not drawn on a sheet, whose views look different ways");

@@ -66,7 +66,8 @@ struct DrawOptions {
   std::optional<double> max_memory_gb;
   ProgressFn progress;  ///< optional: stage name and fraction; false cancels (pcsketch::Cancelled)
 
-  /// Every option, for Drawing::parameters.
+  /// Every option, for Drawing::parameters: options::to_json (options_table.h), keyed by member path;
+  /// options::from_json reads it back.
   nlohmann::json to_json() const;
 };
 

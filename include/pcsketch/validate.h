@@ -1,6 +1,8 @@
 #pragma once
 // Every option checked in one place, before any work starts: the library (prepare, draw_view) and the CLI (right
 // after parsing, before reading the input) call the same function, so a bad value fails at once with the flag named.
+// Each option's range is its entry in the option table (options_table.h), which the CLI also checks while parsing;
+// validate() adds what one range cannot say (relations between options, directions, image memory).
 
 #include <cstddef>
 #include <optional>

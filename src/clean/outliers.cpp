@@ -45,16 +45,6 @@ float plane_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighb
 
 }  // namespace
 
-nlohmann::json OutlierOptions::to_json() const {
-  return {{"enabled", enabled},
-          {"k", k},
-          {"density_factor", density_factor},
-          {"link_factor", link_factor},
-          {"offset_factor", offset_factor},
-          {"min_cluster", min_cluster},
-          {"min_cluster_fraction", min_cluster_fraction}};
-}
-
 OutlierResult find_outliers(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh,
                             const OutlierOptions& options) {
   const std::size_t n = points.size();

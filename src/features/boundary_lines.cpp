@@ -195,18 +195,6 @@ std::vector<std::uint8_t> drawn_sets(const std::vector<Vec3f>& positions, const 
 
 }  // namespace
 
-nlohmann::json BoundaryOptions::to_json() const {
-  return {{"enabled", enabled},
-          {"gap_threshold_deg", gap_threshold_deg},
-          {"fold_deg", fold_deg},
-          {"confirm_factor", confirm_factor},
-          {"confirm_half_angle_deg", confirm_half_angle_deg},
-          {"edge_band_fraction", edge_band_fraction},
-          {"min_size_factor", min_size_factor},
-          {"tracing", features::to_json(tracing)},
-          {"joining", features::to_json(joining)}};
-}
-
 Boundary find_boundaries(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                          const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
                          const BoundaryOptions& options, const neighbourhood::KdTree* tree) {

@@ -173,14 +173,4 @@ JoinResult join_lines(std::vector<Polyline> lines, float radius, float spacing, 
   return result;
 }
 
-nlohmann::json to_json(const JoinOptions& o) {
-  nlohmann::json j = {{"join_distance_alpha", o.join_distance_alpha},
-                      {"join_angle_beta_deg", o.join_angle_beta_deg},
-                      {"min_length_factor", o.min_length_factor},
-                      {"smoothing_iterations", o.smoothing_iterations},
-                      {"smoothing_weight", o.smoothing_weight}};
-  j["min_length"] = o.min_length ? nlohmann::json(*o.min_length) : nlohmann::json(nullptr);
-  return j;
-}
-
 }  // namespace pcsketch::features

@@ -54,8 +54,4 @@ RidgeValleyLines extract_ridge_valley_lines(const PointCloud& cloud, const diffe
   return result;
 }
 
-nlohmann::json to_json(const RidgeValleyOptions& o) {
-  return {{"detection", to_json(o.detection)}, {"tracing", to_json(o.tracing)}, {"joining", to_json(o.joining)}};
-}
-
 }  // namespace pcsketch::features

@@ -130,15 +130,4 @@ DetectionResult detect_ridge_valley_points(const std::vector<Vec3f>& points, con
   return result;
 }
 
-nlohmann::json to_json(const DetectionOptions& o) {
-  return {{"ridge_threshold_alpha", o.ridge_threshold_alpha},
-          {"extreme", o.extreme == CurvatureExtreme::Percentile ? "percentile" : "minmax"},
-          {"extreme_percentile", o.extreme_percentile},
-          {"rule", o.rule == DetectionRule::Salient ? "salient" : "paper"},
-          {"saliency_floor", o.saliency_floor},
-          {"median_factor", o.median_factor},
-          {"non_maximum_suppression", o.non_maximum_suppression},
-          {"suppression_cone_deg", o.suppression_cone_deg}};
-}
-
 }  // namespace pcsketch::features

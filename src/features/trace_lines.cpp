@@ -274,11 +274,4 @@ TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<Poin
   return result;
 }
 
-nlohmann::json to_json(const TraceOptions& o) {
-  nlohmann::json j = {
-      {"radius_factor", o.radius_factor}, {"corridor_fraction", o.corridor_fraction}, {"max_turn_deg", o.max_turn_deg}};
-  j["radius"] = o.radius ? nlohmann::json(*o.radius) : nlohmann::json(nullptr);
-  return j;
-}
-
 }  // namespace pcsketch::features

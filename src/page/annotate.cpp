@@ -92,12 +92,6 @@ double millimetres(Units units) {
   return 0;
 }
 
-nlohmann::json PageOptions::to_json() const {
-  nlohmann::json j = {{"units", to_string(units)}, {"scale_bar", scale_bar}, {"north_arrow", north_arrow}};
-  j["scale"] = scale ? nlohmann::json(ratio_text(*scale)) : nlohmann::json(nullptr);
-  return j;
-}
-
 double parse_scale(std::string_view text) {
   const std::size_t colon = text.find(':');
   double page = 0, model = 0;

@@ -172,14 +172,6 @@ std::vector<Stroke> order_layer(const std::vector<Stroke>& input, double mm_per_
 
 }  // namespace
 
-nlohmann::json PlotterOptions::to_json() const {
-  return {{"merge_tolerance_mm", merge_tolerance_mm},
-          {"collinear_tolerance_mm", collinear_tolerance_mm},
-          {"min_stroke_mm", min_stroke_mm},
-          {"merge", merge},
-          {"sort", sort}};
-}
-
 nlohmann::json PlotStats::to_json() const {
   return {{"pen_down_mm", pen_down_mm}, {"pen_up_mm", pen_up_mm}, {"strokes", strokes}};
 }

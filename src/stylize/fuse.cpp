@@ -216,14 +216,6 @@ bool finite(const std::vector<Vec2f>& points) {
 
 }  // namespace
 
-nlohmann::json FusionOptions::to_json() const {
-  return {{"enabled", enabled},
-          {"distance_widths", distance_widths},
-          {"min_stretch_px", min_stretch_px},
-          {"max_gap_px", max_gap_px},
-          {"max_angle_deg", max_angle_deg}};
-}
-
 FusionResult fuse_strokes(std::vector<Stroke> strokes, const std::vector<FusionRank>& rank, float pen_width_px,
                           const FusionOptions& o) {
   if (rank.size() != strokes.size())

@@ -30,15 +30,6 @@ std::vector<std::uint8_t> pinned_vertices(const Polyline& line, const view::Came
 
 }  // namespace
 
-nlohmann::json FinishOptions::to_json() const {
-  return {{"smooth", smooth},
-          {"smooth_passes", smooth_passes},
-          {"corner_angle_deg", corner_angle_deg},
-          {"corner_arm_px", corner_arm_px},
-          {"min_length_px", min_length_px},
-          {"join_px", join_px}};
-}
-
 Polyline smooth_line(const Polyline& line, const view::Camera& camera, const FinishOptions& o) {
   Polyline out = line;
   const std::size_t n = line.size();

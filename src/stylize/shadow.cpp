@@ -20,20 +20,6 @@ namespace {
 
 constexpr float kDegToRad = std::numbers::pi_v<float> / 180.f;
 
-const char* name(ShadowMode m) {
-  switch (m) {
-    case ShadowMode::None:
-      return "none";
-    case ShadowMode::Paper:
-      return "paper";
-    case ShadowMode::Attached:
-      return "attached";
-    case ShadowMode::Both:
-      return "both";
-  }
-  return "?";
-}
-
 /// A maximal chain of vertex indices whose consecutive segments all passed a test; closed when it is the whole loop.
 struct Chain {
   std::vector<std::size_t> vertices;
@@ -226,43 +212,6 @@ float graded(float a, float b, std::size_t i, std::size_t count) {
 }
 
 }  // namespace detail
-
-nlohmann::json LightOptions::to_json() const {
-  nlohmann::json j = {{"elevation_deg", elevation_deg},
-                      {"azimuth_deg", azimuth_deg},
-                      {"follow_camera", follow_camera},
-                      {"meaning", "direction the light travels"}};
-  if (direction) j["direction"] = {direction->x(), direction->y(), direction->z()};
-  return j;
-}
-
-nlohmann::json ShadowOptions::to_json() const {
-  return {{"mode", name(mode)},
-          {"light", light.to_json()},
-          {"k_set", k_set},
-          {"d", d},
-          {"cast_from_valleys", cast_from_valleys},
-          {"ray_offset_factor", ray_offset_factor},
-          {"max_cast_factor", max_cast_factor},
-          {"visibility_offset_factor", visibility_offset_factor},
-          {"max_jump_factor", max_jump_factor},
-          {"clip_to_surface", clip_to_surface},
-          {"cast_hatch_width_px", cast_hatch_width_px},
-          {"cast_grey", {cast_grey_near, cast_grey_far}},
-          {"shade_blocks", shade_blocks},
-          {"block_grey", {block_grey_near, block_grey_far}},
-          {"attached_levels", attached_levels},
-          {"hatch_spacing_px", hatch_spacing_px},
-          {"hatch_angle_deg", hatch_angle_deg},
-          {"cross_angle_deg", cross_angle_deg},
-          {"attached_width_px", attached_width_px},
-          {"attached_grey", {attached_grey_light, attached_grey_dark}},
-          {"mask_cell_px", mask_cell_px},
-          {"splat_radius_factor", splat_radius_factor},
-          {"depth_jump_factor", depth_jump_factor},
-          {"attached_min_facing", attached_min_facing},
-          {"min_hatch_px", min_hatch_px}};
-}
 
 Vec3f light_direction(const LightOptions& light, const view::Camera& camera) {
   Vec3f d;

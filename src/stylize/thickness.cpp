@@ -88,20 +88,6 @@ void check(const ThicknessOptions& o) {
         "weight in [0, 1]");
 }
 
-const char* name(ThicknessModel m) {
-  switch (m) {
-    case ThicknessModel::Constant:
-      return "constant";
-    case ThicknessModel::Depth:
-      return "depth";
-    case ThicknessModel::Angle:
-      return "angle";
-    case ThicknessModel::Combined:
-      return "combined";
-  }
-  return "?";
-}
-
 /// An optional extra vertex at one end of a visibility run: the midpoint shared with the neighbouring run.
 struct RunEnd {
   bool has_mid = false;
@@ -110,23 +96,6 @@ struct RunEnd {
 };
 
 }  // namespace
-
-nlohmann::json ThicknessOptions::to_json() const {
-  nlohmann::json j = {{"model", name(model)},
-                      {"rho_min_px", rho_min},
-                      {"rho_max_px", rho_max},
-                      {"cofi", cofi},
-                      {"normalise_cofi", normalise_cofi},
-                      {"combination", combination == Combination::Mean ? "mean" : "product"},
-                      {"angle_weight", angle_weight},
-                      {"angle_arm_px", angle_arm_px},
-                      {"angle_width", angle_width == AngleWidth::Range ? "range" : "paper"},
-                      {"brush", brush},
-                      {"brush_taper_px", brush_taper_px},
-                      {"brush_end_fraction", brush_end_fraction}};
-  if (depth_range) j["depth_range"] = {depth_range->near, depth_range->far};
-  return j;
-}
 
 int angle_level(double alpha_deg) {
   // Upper bin edges of Table 1 in degrees (π/9, π/6, 2π/9, 5π/18, π/3, 4π/9, 5π/9, 2π/3, 5π/6), level 10 first.

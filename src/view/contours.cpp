@@ -270,30 +270,6 @@ std::vector<std::uint8_t> border_band(const std::vector<std::uint8_t>& border,
 
 }  // namespace
 
-nlohmann::json ContourOptions::to_json() const {
-  return {{"radius_factor", radius_factor},
-          {"k", k},
-          {"gap_threshold_deg", gap_threshold_deg},
-          {"quadrant_test", quadrant_test},
-          {"confirm_factor", confirm_factor},
-          {"confirm_half_angle_deg", confirm_half_angle_deg},
-          {"connection", connection == OutlineConnection::Outermost ? "outermost" : "direction_guided"},
-          {"trace_radius_factor", trace_radius_factor},
-          {"z_max_factor", z_max_factor},
-          {"max_turn_deg", max_turn_deg},
-          {"absorb_factor", absorb_factor},
-          {"heading_steps", heading_steps},
-          {"min_length_factor", min_length_factor},
-          {"interior", interior},
-          {"interior_neighbours", interior_neighbours},
-          {"interior_dedupe_factor", interior_dedupe_factor},
-          {"interior_trace_radius_factor", interior_trace_radius_factor},
-          {"interior_z_max_factor", interior_z_max_factor},
-          {"persistence_factor", persistence_factor},
-          {"denoised_min_length_factor", denoised_min_length_factor},
-          {"adaptive_spacing", adaptive_spacing}};
-}
-
 ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                                   const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
                                   const Camera& camera, const ContourOptions& o, float normal_noise,

@@ -25,10 +25,6 @@ void check_analysed(const PointCloud& cloud, const differential::Surface& surfac
 
 }  // namespace
 
-nlohmann::json ViewOptions::to_json() const {
-  return {{"contours", contours.to_json()}, {"visibility", visibility.to_json()}};
-}
-
 SurfaceScene build_surface_scene(const PointCloud& cloud, const differential::Surface& surface,
                                  const SurfaceSceneOptions& options) {
   check_analysed(cloud, surface, "surface scene");

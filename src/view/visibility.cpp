@@ -110,16 +110,6 @@ void build_runs(ViewLine& vl, const Camera& camera) {
 
 }  // namespace
 
-nlohmann::json VisibilityOptions::to_json() const {
-  return {{"self_offset_factor", self_offset_factor},
-          {"offset_from_local_spacing", offset_from_local_spacing},
-          {"grazing_cos", grazing_cos},
-          {"grazing_range_factor", grazing_range_factor},
-          {"lift_to_source_plane", lift_to_source_plane},
-          {"smoothing_window", smoothing_window},
-          {"transition_refinement", transition_refinement}};
-}
-
 ViewLine seen_line(const Polyline& line, const Camera& camera) {
   ViewLine vl;
   vl.line = line;

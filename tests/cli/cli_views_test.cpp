@@ -64,7 +64,7 @@ TEST_F(CliViews, NamedViewRelativeToUp) {
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json json = nlohmann::json::parse(slurp(path("t.json")));
   EXPECT_TRUE(direction(json).isApprox(Vec3d(0, 0, -1), 1e-6));
-  EXPECT_EQ(json["parameters"]["camera"]["view"], "top");
+  EXPECT_EQ(json["parameters"]["camera"]["named"], "top");
   const CommandRun bad = run("draw " + kBunny + " -o " + path("x.svg") + " --view sideways");
   EXPECT_EQ(bad.status, 1);
   EXPECT_NE(bad.err.find("--view"), std::string::npos) << bad.err;

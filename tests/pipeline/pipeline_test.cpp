@@ -41,7 +41,7 @@ TEST(Pipeline, CubeSeenFromACornerHasContoursAndRidgesButNoValleys) {
   }
   EXPECT_EQ(d.camera["projection"], "orthographic");
   EXPECT_GT(d.parameters["resolved"]["spacing_h"].get<double>(), 0.0);
-  EXPECT_EQ(d.parameters["thickness"]["rho_max_px"], o.thickness.rho_max);
+  EXPECT_EQ(d.parameters["thickness"]["rho_max"], o.thickness.rho_max);
   EXPECT_GT(r.timings.ridge_valley_points, 0.0);
   EXPECT_GT(r.timings.total(), 0.0);
 }

@@ -3,7 +3,6 @@
 // surface analysis, so that no later stage draws, frames or shades them (docs/geometry.md, "Outliers").
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -33,8 +32,6 @@ struct OutlierOptions {
   std::size_t min_cluster = 32;
   double min_cluster_fraction = 0.0005;
   ProgressFn progress;  ///< optional
-
-  nlohmann::json to_json() const;
 };
 
 struct OutlierResult {

@@ -4,7 +4,6 @@
 // the scanner missed) are found too, so that no stage draws them, but they make no line.
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -51,8 +50,6 @@ struct BoundaryOptions {
   /// smoothing.
   JoinOptions joining{.join_distance_alpha = 2.f};
   ProgressFn progress;  ///< optional
-
-  nlohmann::json to_json() const;
 };
 
 struct Boundary {

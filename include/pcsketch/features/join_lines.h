@@ -2,7 +2,6 @@
 // Joining broken ridge/valley lines and dropping short ones: the paper's optimisation step (§IV.A, Fig. 5).
 
 #include <cstddef>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <vector>
 
@@ -47,7 +46,5 @@ struct JoinResult {
 /// @param[in] spacing mean spacing h, model units
 /// @throws pcsketch::Error if radius or spacing is not positive or an option is out of range.
 JoinResult join_lines(std::vector<Polyline> lines, float radius, float spacing, const JoinOptions& options = {});
-
-nlohmann::json to_json(const JoinOptions& options);
 
 }  // namespace pcsketch::features

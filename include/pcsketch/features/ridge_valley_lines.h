@@ -1,7 +1,6 @@
 #pragma once
 // Ridge and valley lines of a cloud in one call: detection, tracing, joining (paper §IV.A).
 
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -41,7 +40,5 @@ struct RidgeValleyLines {
 /// @throws pcsketch::Error if `surface` does not belong to `cloud` (sizes differ) or an option is out of range.
 RidgeValleyLines extract_ridge_valley_lines(const PointCloud& cloud, const differential::Surface& surface,
                                             const RidgeValleyOptions& options = {});
-
-nlohmann::json to_json(const RidgeValleyOptions& options);
 
 }  // namespace pcsketch::features

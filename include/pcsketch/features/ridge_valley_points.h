@@ -3,7 +3,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -95,8 +94,5 @@ const Vec3f& feature_direction(const differential::Curvature& curvature, std::si
 DetectionResult detect_ridge_valley_points(const std::vector<Vec3f>& points, const differential::Curvature& curvature,
                                            const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
                                            const DetectionOptions& options = {}, const ProgressFn& progress = {});
-
-/// The options as JSON (recorded in outputs so a result states the exact parameters).
-nlohmann::json to_json(const DetectionOptions& options);
 
 }  // namespace pcsketch::features

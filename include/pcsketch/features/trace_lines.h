@@ -2,7 +2,6 @@
 // Connecting ridge/valley points into polylines: the paper's PCA-guided growth (§IV.A, second step).
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <vector>
 
@@ -57,7 +56,5 @@ struct TraceResult {
 TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<PointLabel>& labels,
                         const std::vector<float>& feature_curvature, float spacing, const TraceOptions& options = {},
                         const ProgressFn& progress = {});
-
-nlohmann::json to_json(const TraceOptions& options);
 
 }  // namespace pcsketch::features

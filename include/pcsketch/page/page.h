@@ -31,8 +31,6 @@ struct PageOptions {
   bool scale_bar = false;
   /// A north arrow, pointing along the model's +y axis as seen in the view (georeferenced scans: y is north).
   bool north_arrow = false;
-
-  nlohmann::json to_json() const;
 };
 
 /// "1:20" → 0.05 (page ÷ model); "2:1" → 2. @throws pcsketch::Error for anything but two positive numbers.

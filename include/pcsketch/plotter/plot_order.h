@@ -22,8 +22,6 @@ struct PlotterOptions {
   double min_stroke_mm = 0.5;
   bool merge = true;  ///< join strokes whose ends meet (per layer)
   bool sort = true;   ///< greedy nearest-end order with reversal (per layer)
-
-  nlohmann::json to_json() const;
 };
 
 /// What the pen does for one drawing: ink laid and travel in the air, summed over the layers (a layer is plotted as

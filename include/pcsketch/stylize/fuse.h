@@ -5,7 +5,6 @@
 // the ends of the stretch, and marked Stroke::fused_into the one drawn in its place.
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/drawing.h"
@@ -27,7 +26,6 @@ struct FusionOptions {
   /// Largest angle between the two strokes' directions along a stretch, degrees (undirected): crossing lines are
   /// two lines even where they are close.
   float max_angle_deg = 30.f;
-  nlohmann::json to_json() const;
 };
 
 /// Precedence of a stroke in fusion: where two strokes run together the one of lower rank is drawn.

@@ -3,7 +3,6 @@
 // filter that keeps corners (a CAD crease traced through alternating points loses its stairs, its corners stay),
 // and strokes too short to read as lines (a pen dab, an ink blot) are left out.
 
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/polyline.h"
@@ -28,7 +27,6 @@ struct FinishOptions {
   /// A line shorter than that stays when one of its ends lies within this distance (px) of the end of a longer line:
   /// it continues that line (a contour traced in two parts) rather than standing alone as a dab.
   float join_px = 10.f;
-  nlohmann::json to_json() const;
 };
 
 /// `line` smoothed in place of its vertices (same count, same order, same per-point data): open ends and corners

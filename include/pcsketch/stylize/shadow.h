@@ -3,7 +3,6 @@
 // (eqs. 12–14, graded blocks of Fig. 19), and, beyond the paper, image-space hatching of the attached shadow.
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <vector>
 
@@ -38,8 +37,6 @@ struct LightOptions {
   /// When true the direction (explicit or from azimuth/elevation) is read in the camera's frame as if the camera
   /// were the paper's default one (x = −right, y = up, z = forward), so the light turns with the view.
   bool follow_camera = false;
-
-  nlohmann::json to_json() const;
 };
 
 /// Unit travel direction of the light for this camera.
@@ -108,8 +105,6 @@ struct ShadowOptions {
   /// Shorter hatch pieces are dropped: specks on surfaces seen edge-on read as noise. 6 px = one hatch spacing.
   float min_hatch_px = 6.f;
   ProgressFn progress;  ///< optional
-
-  nlohmann::json to_json() const;
 };
 
 /// What shading needs of one view.

@@ -4,7 +4,6 @@
 // Every width is in output pixels and depends only on the projected drawing, never on the cloud's scale.
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <vector>
 
@@ -72,9 +71,6 @@ struct ThicknessOptions {
   float brush_taper_px = 12.0f;
   /// Width at the very end as a fraction of the untapered width. 0.3 keeps the end visible at ρ_min.
   float brush_end_fraction = 0.3f;
-
-  /// Every field, for Drawing::parameters.
-  nlohmann::json to_json() const;
 };
 
 /// Table 1: the level (1 … 10) of a bend angle α in degrees (180 = straight). Bins are closed on the right as in the

@@ -4,7 +4,6 @@
 // the viewer inside the outline (an ear in front of the head, the inner rim of a torus seen from the side).
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -107,8 +106,6 @@ struct ContourOptions {
   /// Off: the paper's single radius everywhere.
   bool adaptive_spacing = true;
   ProgressFn progress;  ///< optional: "contour points", "contour connection"
-
-  nlohmann::json to_json() const;
 };
 
 /// The contour points of one view (the "contour points extraction" step).

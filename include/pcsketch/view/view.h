@@ -3,7 +3,6 @@
 // view-independent (the Surface, the lines, the SurfaceScene) is computed once and passed in, so a second view
 // costs only projection, contour extraction and ray casting.
 
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -21,8 +20,6 @@ struct ViewOptions {
   ContourOptions contours;
   VisibilityOptions visibility;
   ProgressFn progress;  ///< optional, passed to the steps whose own progress is empty
-
-  nlohmann::json to_json() const;
 };
 
 /// Seconds per step, named after the paper's Table 2 rows.

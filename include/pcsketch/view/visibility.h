@@ -4,7 +4,6 @@
 // into visible and hidden runs, hidden runs kept in the data.
 
 #include <cstdint>
-#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "pcsketch/core/polyline.h"
@@ -53,8 +52,6 @@ struct VisibilityOptions {
   /// so a hidden arc ends where the occluder's silhouette crosses it, not at the nearest vertex.
   int transition_refinement = 6;
   ProgressFn progress;  ///< optional
-
-  nlohmann::json to_json() const;
 };
 
 /// A run of one line with constant visibility. Consecutive runs share their end points.
