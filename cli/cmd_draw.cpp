@@ -156,8 +156,25 @@ void print_config(DrawArgs& args) {
   std::cout << options::to_json(args.options).dump(2) << "\n";
 }
 
+/// The recorded options under the flags given; a recorded sheet is drawn as a sheet again unless flags chose the
+/// views. A sheet's views are its own: a recorded direction of sight is then dropped.
+void apply_config(DrawArgs& args, const CLI::App& cmd) {
+  nlohmann::json config = read_config(args.config);
+  const std::optional<page::Arrangement> sheet = take_sheet(config, args.config);
+  args.options = with_config(config, args.config, args.options, cmd);
+  const bool views_given = !args.views.views.empty() || args.views.turntable || sight_flag_given(cmd);
+  if (views_given) return;
+  if (!args.views.sheet) args.views.sheet = sheet;
+  if (!args.views.sheet) return;
+  view::CameraOptions& c = args.options.camera;
+  c.named.reset();
+  c.direction.reset();
+  c.azimuth_deg.reset();
+  c.elevation_deg.reset();
+}
+
 void run_draw(DrawArgs& args, const CLI::App& cmd, const GlobalOptions& global) {
-  if (!args.config.empty()) args.options = with_config(read_config(args.config), args.config, args.options, cmd);
+  if (!args.config.empty()) apply_config(args, cmd);
   if (args.print_config) return print_config(args);
   if (args.input.empty()) throw OptionError("INPUT", "is required (a point cloud to draw)");
   if (args.outputs.empty() && args.json.empty() && args.stages.empty())

@@ -47,6 +47,22 @@ std::string svg_desc(const std::string& svg, const std::string& path) {
 
 }  // namespace
 
+bool sight_flag_given(const CLI::App& cmd) {
+  return std::any_of(kSightFlags.begin(), kSightFlags.end(), [&](const char* name) {
+    const CLI::Option* flag = cmd.get_option_no_throw(name);
+    return flag != nullptr && flag->count() > 0;
+  });
+}
+
+std::optional<page::Arrangement> take_sheet(nlohmann::json& config, const std::string& path) {
+  if (!config.is_object() || !config.contains("sheet")) return std::nullopt;
+  const nlohmann::json value = config["sheet"];
+  config.erase("sheet");
+  const auto arrangement = value.is_string() ? page::parse_arrangement(value.get<std::string>()) : std::nullopt;
+  if (!arrangement) throw Error(FileLoc{path, {}, {}}, "sheet: expected \"first\" or \"third\", got " + value.dump());
+  return arrangement;
+}
+
 nlohmann::json read_config(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(FileLoc{path, {}, {}}, "cannot read the config file");
@@ -78,10 +94,7 @@ DrawOptions with_config(const nlohmann::json& config, const std::string& path, c
   DrawOptions out = parsed;  // keeps what is not an option (the progress callback)
   // The direction of sight is one choice made by several flags: any of them given replaces the recorded one whole
   // (a recorded --view left with --azimuth 30 given would otherwise be two sights).
-  const bool sight_given = std::any_of(kSightFlags.begin(), kSightFlags.end(), [&](const char* name) {
-    const CLI::Option* flag = cmd.get_option_no_throw(name);
-    return flag != nullptr && flag->count() > 0;
-  });
+  const bool sight_given = sight_flag_given(cmd);
   for (const options::Option& o : options::table()) {
     const CLI::Option* flag = o.flag.empty() ? nullptr : cmd.get_option_no_throw(o.flag);
     if (flag != nullptr && flag->count() > 0) continue;

@@ -69,5 +69,20 @@ TEST_F(CliPage, SheetHasFourNamedViewsOnOnePage) {
   EXPECT_TRUE(std::filesystem::exists(path("s.png")));
 }
 
+TEST_F(CliPage, SheetReplaysFromItsSvgAndJson) {
+  const std::string draw = "-q draw " + kBunny + " ";
+  ASSERT_EQ(run(draw + "--sheet third --size 200x200 --scale-bar -o " + path("s.svg") + " --json " + path("s.json"))
+                .status,
+            0);
+  for (const char* recorded : {"s.svg", "s.json"}) {
+    const CommandRun r = run(draw + "--config " + path(recorded) + " -o " + path("again.svg"));
+    ASSERT_EQ(r.status, 0) << recorded << ": " << r.err;
+    EXPECT_EQ(slurp(path("again.svg")), slurp(path("s.svg"))) << recorded;
+  }
+  // A flag choosing a view draws that one view instead.
+  ASSERT_EQ(run(draw + "--config " + path("s.svg") + " --view top -o " + path("top.svg")).status, 0);
+  EXPECT_EQ(slurp(path("top.svg")).find(">FRONT<"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace pcsketch
