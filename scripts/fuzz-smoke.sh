@@ -14,6 +14,8 @@ targets=(fuzz_read_ply fuzz_read_las fuzz_read_xyz fuzz_read_other fuzz_cli)
 cmake --preset fuzz -B "$build"
 cmake --build "$build" --target "${targets[@]}" -j2
 
+# Leaks in system libraries that are not ours (fontconfig's configuration, loaded when cairo lays out a label).
+export LSAN_OPTIONS="suppressions=$PWD/.ci/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 corpus="$(mktemp -d)"
 trap 'rm -rf "$corpus"' EXIT
 mkdir -p "$build/artifacts"
