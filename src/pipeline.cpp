@@ -226,11 +226,13 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   return p;
 }
 
-DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera_options,
-                     const DrawOptions& options) {
-  validate(options, camera_options);
+namespace {
+
+/// The drawing of one view with `camera` (made from `camera_options`, both validated by the caller), before its page
+/// and plotter paths.
+DrawResult draw_unfinished(const Prepared& prepared, const view::Camera& camera,
+                           const view::CameraOptions& camera_options, const DrawOptions& options) {
   DrawResult result;
-  const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera_options);
   const nlohmann::json parameters = parameters_json(prepared, options, camera_options);
   if (!prepared.analysed()) {
     result.drawing = empty_drawing(camera, prepared.cloud.origin, parameters);
@@ -239,36 +241,42 @@ DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera
   const view::ViewResult v = compute_view(prepared, camera, options, result.timings, result.warnings);
   result.drawing =
       style(prepared, v, {options.lines, options.thickness}, options, parameters, result.timings, result.warnings);
-  finish_page(result.drawing, camera.scale, page::north_in_image(camera), options, result.timings, result.warnings);
+  return result;
+}
+
+}  // namespace
+
+DrawResult draw_view(const Prepared& prepared, const view::CameraOptions& camera_options,
+                     const DrawOptions& options) {
+  validate(options, camera_options);
+  const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera_options);
+  DrawResult result = draw_unfinished(prepared, camera, camera_options, options);
+  if (prepared.analysed())
+    finish_page(result.drawing, camera.scale, page::north_in_image(camera), options, result.timings, result.warnings);
   return result;
 }
 
 DrawResult draw_sheet(const Prepared& prepared, const view::CameraOptions& camera_options,
                       page::Arrangement arrangement, const DrawOptions& options) {
   // Each view unfinished (no page, no plotter paths): the sheet is finished as one page.
-  DrawOptions view_options = options;
-  view_options.page = {};
-  view_options.render.plotter = false;
   DrawResult result;
   std::vector<page::SheetView> views;
   for (const view::NamedView name : page::sheet_views(arrangement)) {
-    view::CameraOptions camera = camera_options;
-    camera.projection = view::Projection::Orthographic;
-    camera.direction.reset();
-    camera.azimuth_deg.reset();
-    camera.elevation_deg.reset();
-    camera.named = name;
-    DrawResult drawn = draw_view(prepared, camera, view_options);
+    view::CameraOptions camera_view = camera_options;
+    camera_view.projection = view::Projection::Orthographic;
+    camera_view.direction.reset();
+    camera_view.azimuth_deg.reset();
+    camera_view.elevation_deg.reset();
+    camera_view.named = name;
+    validate(options, camera_view);
+    const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera_view);
+    DrawResult drawn = draw_unfinished(prepared, camera, camera_view, options);
     result.timings += drawn.timings;
     result.warnings.insert(result.warnings.end(), drawn.warnings.begin(), drawn.warnings.end());
-    views.push_back({name, std::move(drawn.drawing),
-                     view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera)});
+    views.push_back({name, std::move(drawn.drawing), camera});
   }
   auto [sheet, scale] = page::compose_sheet(std::move(views), arrangement);
   result.drawing = std::move(sheet);
-  const nlohmann::json recorded = options.to_json();  // the sheet's own page and render, not its views'
-  result.drawing.parameters["page"] = recorded["page"];
-  result.drawing.parameters["render"] = recorded["render"];
   DrawOptions sheet_options = options;
   if (options.page.north_arrow) {
     result.warnings.push_back("--north-arrow: not drawn on a sheet, whose views look different ways");
