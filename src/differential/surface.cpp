@@ -53,6 +53,15 @@ bool normalise(std::vector<Vec3f>& normals) {
   return true;
 }
 
+/// The tree of `points` and their neighbourhoods, built together (the build overlaps the search: one wall time).
+neighbourhood::Neighbourhoods index_neighbourhoods(const std::vector<Vec3f>& points,
+                                                   std::optional<neighbourhood::KdTree>& tree, SurfaceTimings& t,
+                                                   const SurfaceOptions& options) {
+  return timed(t.neighbourhoods, [&] {
+    return neighbourhood::index_neighbourhoods(points, tree, with_progress(options.neighbourhood, options.progress));
+  });
+}
+
 void append(Warnings& to, const Warnings& from) { to.insert(to.end(), from.begin(), from.end()); }
 
 /// Moves the outliers of `cloud` to surface.outliers and recomputes the tree and neighbourhoods of what is left
@@ -75,11 +84,7 @@ void remove_outliers(PointCloud& cloud, Surface& surface, std::optional<neighbou
   });
   surface.isolated_outliers = found.isolated;
   surface.clustered_outliers = found.clustered;
-  timed(t.kd_tree, [&] { tree.emplace(cloud.positions); });
-  surface.neighbourhoods = timed(t.neighbourhoods, [&] {
-    return neighbourhood::compute_neighbourhoods(*tree, cloud.positions,
-                                                 with_progress(options.neighbourhood, options.progress));
-  });
+  surface.neighbourhoods = index_neighbourhoods(cloud.positions, tree, surface.timings, options);
 }
 
 }  // namespace
@@ -100,11 +105,7 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
 
   std::optional<neighbourhood::KdTree> tree;
   ProgressReporter(options.progress, "neighbourhoods")(0.0);  // the tree's build is part of the stage
-  timed(t.kd_tree, [&] { tree.emplace(cloud.positions); });
-  surface.neighbourhoods = timed(t.neighbourhoods, [&] {
-    return neighbourhood::compute_neighbourhoods(*tree, cloud.positions,
-                                                 with_progress(options.neighbourhood, options.progress));
-  });
+  surface.neighbourhoods = index_neighbourhoods(cloud.positions, tree, t, options);
   remove_outliers(cloud, surface, tree, options);
   surface.spacing = neighbourhood::mean_spacing(surface.neighbourhoods);
 

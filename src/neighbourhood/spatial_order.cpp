@@ -5,24 +5,15 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 
+#include "morton.h"
 #include "pcsketch/core/error.h"
 
 namespace pcsketch::neighbourhood {
 
 namespace {
-
-/// Spreads the low 21 bits of v so that two zero bits separate consecutive bits.
-std::uint64_t spread_bits(std::uint64_t v) {
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
 
 struct Keyed {
   std::uint64_t code;
@@ -39,17 +30,17 @@ std::vector<std::uint32_t> spatial_order(const std::vector<Vec3f>& points) {
   const Box3f box = bounding_box(points);
   // One cubic grid of 2^21 cells per axis over the largest side keeps the curve isotropic.
   const float side = box.empty() ? 0.f : box.size().maxCoeff();
-  const float scale = side > 0 ? static_cast<float>((1u << 21) - 1) / side : 0.f;
+  const float scale = side > 0 ? static_cast<float>(detail::kMortonMax) / side : 0.f;
   std::vector<Keyed> keyed(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) {
-      std::uint64_t code = 0;
+      std::array<std::uint32_t, 3> cell;
       for (int axis = 0; axis < 3; ++axis) {
         const float t = (points[i][axis] - box.min[axis]) * scale;
-        const float cell = t >= 0 ? std::min(t, float((1u << 21) - 1)) : 0.f;  // NaN maps to cell 0
-        code |= spread_bits(static_cast<std::uint64_t>(cell)) << axis;
+        cell[static_cast<std::size_t>(axis)] =
+            static_cast<std::uint32_t>(t >= 0 ? std::min(t, float(detail::kMortonMax)) : 0.f);  // NaN: cell 0
       }
-      keyed[i] = {code, static_cast<std::uint32_t>(i)};
+      keyed[i] = {detail::morton(cell[0], cell[1], cell[2]), static_cast<std::uint32_t>(i)};
     }
   });
   // Keys are unique (index breaks ties), so the parallel sort is deterministic.

@@ -13,6 +13,7 @@
 #include "pcsketch/neighbourhood/neighbourhoods.h"
 #include "pcsketch/neighbourhood/spacing.h"
 #include "pcsketch/neighbourhood/spatial_order.h"
+#include "nanoflann_metric.h"
 
 namespace pcsketch::neighbourhood {
 namespace {
@@ -27,16 +28,6 @@ std::vector<Vec3f> random_points_with_duplicates(std::size_t n, std::uint32_t se
   for (int c = 0; c < 30; ++c) points.push_back(points[3]);
   std::shuffle(points.begin(), points.end(), rng);
   return points;
-}
-
-/// Squared distance evaluated like nanoflann's L2_Simple_Adaptor (same float operations, same order).
-float distance_sq(const Vec3f& a, const Vec3f& b) {
-  float result = 0;
-  for (int d = 0; d < 3; ++d) {
-    const float diff = a[d] - b[d];
-    result += diff * diff;
-  }
-  return result;
 }
 
 /// All (squared distance, index) pairs sorted lexicographically.

@@ -2,6 +2,7 @@
 // The k nearest neighbours of every point, computed once, stored flat, shared by every later stage.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -36,8 +37,15 @@ struct Neighbourhoods {
 
 /// k-NN of every point of the tree (`points` are the tree's points), in parallel; deterministic for any thread count.
 /// Ties are broken by index; each point itself is excluded by index, so its duplicates count as neighbours.
+/// Most rows come from a uniform grid (each cell's candidates gathered once for all its points); the tree answers the
+/// rows the grid cannot prove (sparse regions, isolated points): the lists equal the tree's own, bit for bit.
 /// @throws pcsketch::Error if the tree does not hold points.size() points
 Neighbourhoods compute_neighbourhoods(const KdTree& tree, const std::vector<Vec3f>& points,
                                       const NeighbourhoodOptions& options = {});
+
+/// As compute_neighbourhoods, building the kd-tree of `points` into `tree` at the same time (its build is serial and
+/// runs beside the grid's search); for callers that need the tree afterwards.
+Neighbourhoods index_neighbourhoods(const std::vector<Vec3f>& points, std::optional<KdTree>& tree,
+                                    const NeighbourhoodOptions& options = {});
 
 }  // namespace pcsketch::neighbourhood

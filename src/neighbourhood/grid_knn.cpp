@@ -1,0 +1,267 @@
+// The k-NN of every point from the 27 grid cells around it: each cell's candidates are gathered once for all of its
+// points, with no tree descent per query. Rows the grid cannot prove are left to the kd-tree.
+
+#include "grid_knn.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+
+#include "core/parallel_chunks.h"
+#include "morton.h"
+
+namespace pcsketch::neighbourhood::detail {
+namespace {
+
+using Cell = std::array<std::uint32_t, 3>;
+
+/// Inverse of spread_bits: the bits at every third place, packed.
+std::uint32_t compact_bits(std::uint64_t v) {
+  v &= 0x1249249249249249ULL;
+  v = (v ^ (v >> 2)) & 0x10c30c30c30c30c3ULL;
+  v = (v ^ (v >> 4)) & 0x100f00f00f00f00fULL;
+  v = (v ^ (v >> 8)) & 0x1f0000ff0000ffULL;
+  v = (v ^ (v >> 16)) & 0x1f00000000ffffULL;
+  v = (v ^ (v >> 32)) & kMortonMax;
+  return static_cast<std::uint32_t>(v);
+}
+
+/// A grid of cubes of edge `edge` anchored at `lo`; cell coordinates clamp to [0, kMortonMax] (NaN: 0).
+struct Frame {
+  Vec3d lo;
+  double edge;
+  Cell cell_of(const Vec3f& p) const {
+    Cell c;
+    for (int a = 0; a < 3; ++a) {
+      const double t = (double(p[a]) - lo[a]) / edge;
+      c[static_cast<std::size_t>(a)] = static_cast<std::uint32_t>(t >= 0 ? std::min(std::floor(t), double(kMortonMax)) : 0);
+    }
+    return c;
+  }
+  std::uint64_t code_of(const Vec3f& p) const {
+    const Cell c = cell_of(p);
+    return morton(c[0], c[1], c[2]);
+  }
+};
+
+struct Keyed {
+  std::uint64_t code;
+  std::uint32_t index;
+  bool operator<(const Keyed& o) const { return code < o.code || (code == o.code && index < o.index); }
+};
+
+/// Every point's code and index, sorted: cells are runs, in Morton order. Keys are unique (the index breaks ties), so
+/// the parallel sort is deterministic; already sorted (a spatially reordered cloud at the finest level) costs one pass.
+std::vector<Keyed> sorted_codes(const std::vector<Vec3f>& points, const Frame& frame) {
+  std::vector<Keyed> keyed(points.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) keyed[i] = {frame.code_of(points[i]), std::uint32_t(i)};
+  });
+  if (!std::is_sorted(keyed.begin(), keyed.end())) tbb::parallel_sort(keyed.begin(), keyed.end());
+  return keyed;
+}
+
+/// The cell edge at which an occupied cell holds about `target` points on average. Occupancy is counted at every
+/// power-of-two edge in one pass over the finest sorted codes (two neighbours in code order share a cell of level j
+/// unless their codes differ above bit 3j), then interpolated between the two levels around the target with the
+/// local growth rate (4 per level on a surface, 8 in a volume).
+double cell_edge(const std::vector<Vec3f>& points, const Box3f& box, double target) {
+  const double side = box.size().maxCoeff();
+  const Frame finest{box.min.cast<double>(), side / kMortonMax};
+  const std::vector<Keyed> keyed = sorted_codes(points, finest);
+  std::array<double, kMortonBits + 2> above{};  // above[j]: neighbours in different cells of level j
+  for (std::size_t i = 1; i < keyed.size(); ++i) {
+    const std::uint64_t x = keyed[i].code ^ keyed[i - 1].code;
+    if (x == 0) continue;
+    const int level = (63 - std::countl_zero(x)) / 3;
+    for (int j = 0; j <= level; ++j) above[static_cast<std::size_t>(j)] += 1;
+  }
+  const auto occupancy = [&](int j) { return double(points.size()) / (1.0 + above[static_cast<std::size_t>(j)]); };
+  int j = 0;
+  while (j <= kMortonBits && occupancy(j) < target) ++j;
+  if (j == 0) return finest.edge;
+  const double growth = std::clamp(std::log2(occupancy(j) / occupancy(j - 1)), 1.0, 3.0);
+  return finest.edge * std::ldexp(1.0, j) * std::pow(target / occupancy(j), 1.0 / growth);
+}
+
+/// The occupied cells: their codes, their runs of `order`, and an open-addressing table from code to cell.
+struct Grid {
+  Frame frame;
+  std::vector<std::uint32_t> order;  ///< point indices by (code, index)
+  std::vector<std::uint64_t> codes;  ///< per cell
+  std::vector<std::uint32_t> start;  ///< per cell and one more: its run in `order`
+  std::vector<std::uint32_t> slots;  ///< cell + 1, 0 = empty
+  int shift = 64;
+
+  Grid(const std::vector<Vec3f>& points, const Frame& f) : frame(f) {
+    const std::vector<Keyed> keyed = sorted_codes(points, f);
+    order.resize(keyed.size());
+    for (std::size_t r = 0; r < keyed.size(); ++r) {
+      order[r] = keyed[r].index;
+      if (r == 0 || keyed[r].code != keyed[r - 1].code) {
+        codes.push_back(keyed[r].code);
+        start.push_back(static_cast<std::uint32_t>(r));
+      }
+    }
+    start.push_back(static_cast<std::uint32_t>(order.size()));
+    const int bits = static_cast<int>(std::bit_width(2 * codes.size()));
+    shift = 64 - bits;
+    slots.assign(std::size_t{1} << bits, 0);
+    for (std::uint32_t cell = 0; cell < codes.size(); ++cell) {
+      std::size_t s = slot(codes[cell]);
+      while (slots[s] != 0) s = (s + 1) & (slots.size() - 1);
+      slots[s] = cell + 1;
+    }
+  }
+  std::size_t slot(std::uint64_t code) const { return (code * 0x9E3779B97F4A7C15ULL) >> shift; }
+  /// The cell with this code, or -1.
+  std::int64_t find(std::uint64_t code) const {
+    for (std::size_t s = slot(code);; s = (s + 1) & (slots.size() - 1)) {
+      if (slots[s] == 0) return -1;
+      if (codes[slots[s] - 1] == code) return slots[s] - 1;
+    }
+  }
+  std::size_t cells() const { return codes.size(); }
+};
+
+/// As nanoflann's L2_Simple_Adaptor, so that distances and ties come out the same: query minus point, summed over
+/// x, y, z in this order in float.
+inline float squared(float dx, float dy, float dz) {
+  float d = dx * dx;
+  d += dy * dy;
+  d += dz * dz;
+  return d;
+}
+inline float squared(const Vec3f& q, const Vec3f& p) { return squared(q.x() - p.x(), q.y() - p.y(), q.z() - p.z()); }
+
+/// The 27 cell offsets, nearest first (the cell itself, faces, edges, corners): near candidates come first and fill
+/// the k best early, so that later ones mostly fail the first compare.
+constexpr std::array<std::array<int, 3>, 27> kAround = [] {
+  std::array<std::array<int, 3>, 27> out{};
+  std::size_t m = 0;
+  for (int ring = 0; ring <= 3; ++ring)
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if (dx * dx + dy * dy + dz * dz == ring) out[m++] = {dx, dy, dz};
+  return out;
+}();
+
+/// The points of the 27 cells around one cell, as packed coordinates and indices.
+struct Candidates {
+  Cell centre;  ///< the cell whose points ask
+  std::vector<float> x, y, z;
+  std::vector<std::uint32_t> index;
+  std::vector<float> d2;            ///< per query: squared distances
+  std::vector<std::uint64_t> keys;  ///< per query: the k best (squared distance bits, index); one compare orders them
+
+  void gather(const Grid& grid, const std::vector<Vec3f>& points, std::size_t cell) {
+    x.clear(), y.clear(), z.clear(), index.clear();
+    const std::uint64_t code = grid.codes[cell];
+    centre = {compact_bits(code), compact_bits(code >> 1), compact_bits(code >> 2)};
+    const Cell& c = centre;
+    for (const auto& [dx, dy, dz] : kAround) {
+      const std::int64_t cx = std::int64_t(c[0]) + dx, cy = std::int64_t(c[1]) + dy, cz = std::int64_t(c[2]) + dz;
+      if (std::min({cx, cy, cz}) < 0 || std::max({cx, cy, cz}) > kMortonMax) continue;
+      const std::int64_t other = grid.find(morton(std::uint32_t(cx), std::uint32_t(cy), std::uint32_t(cz)));
+      if (other < 0) continue;
+      for (std::uint32_t r = grid.start[std::size_t(other)]; r < grid.start[std::size_t(other) + 1]; ++r) {
+        const Vec3f& p = points[grid.order[r]];
+        x.push_back(p.x()), y.push_back(p.y()), z.push_back(p.z());
+        index.push_back(static_cast<std::uint32_t>(grid.order[r]));
+      }
+    }
+  }
+
+  /// The k nearest candidates to point i (self excluded) into keys[0, k), sorted; false if there are fewer than k.
+  /// `bound`: a squared distance within which at least k candidates other than i lie (infinity if unknown). Distances
+  /// come first, in a loop the compiler vectorises; only the candidates within the bound (about 1.5 k of a cell's
+  /// hundred, with the previous point's bound) then compete, by insertion.
+  bool nearest(const Vec3f& q, std::uint32_t i, std::size_t k, float bound) {
+    const std::size_t count = index.size();
+    d2.resize(count);
+    for (std::size_t c = 0; c < count; ++c) {
+      const float dx = q.x() - x[c], dy = q.y() - y[c], dz = q.z() - z[c];
+      d2[c] = squared(dx, dy, dz);
+    }
+    keys.resize(count + 1);
+    std::size_t within = 0;
+    for (std::size_t c = 0; c < count; ++c) {
+      keys[within] = std::uint64_t{std::bit_cast<std::uint32_t>(d2[c])} << 32 | index[c];
+      within += d2[c] <= bound && index[c] != i;
+    }
+    if (within < k) return false;
+    // Insertion into the sorted first k: survivors are few, and near ones come first (kAround's order).
+    for (std::size_t c = 1; c < within; ++c) {
+      const std::uint64_t key = keys[c];
+      if (c >= k && key >= keys[k - 1]) continue;
+      std::size_t m = std::min(c, k - 1);
+      for (; m > 0 && key < keys[m - 1]; --m) keys[m] = keys[m - 1];
+      keys[m] = key;
+    }
+    return true;
+  }
+};
+
+/// Distance from q to the outside of the 27 cells around `cell`: any point beyond is at least this far.
+double way_out(const Frame& frame, const Vec3f& q, const Cell& cell) {
+  double d = INFINITY;
+  for (int a = 0; a < 3; ++a) {
+    const double low = frame.lo[a] + (double(cell[static_cast<std::size_t>(a)]) - 1.0) * frame.edge;
+    const double high = frame.lo[a] + (double(cell[static_cast<std::size_t>(a)]) + 2.0) * frame.edge;
+    d = std::min({d, double(q[a]) - low, high - double(q[a])});
+  }
+  return d;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> grid_knn(const std::vector<Vec3f>& points, std::size_t k, std::uint32_t* indices,
+                                    float* distances, const ProgressFn& progress) {
+  const std::size_t n = points.size();
+  std::vector<std::uint8_t> left(n, 1);
+  const Box3f box = bounding_box(points);
+  if (!box.empty() && box.size().allFinite() && box.size().maxCoeff() > 0) {
+    const Grid grid(points, Frame{box.min.cast<double>(), cell_edge(points, box, 0.5 * double(k + 1))});
+    // A cell crowded far beyond its share (many copies of one point) would make its rows quadratic: the tree's.
+    const std::size_t most = 64 * (k + 1);
+    pcsketch::detail::parallel_chunks(grid.cells(), progress, "neighbourhoods", [&](std::size_t begin, std::size_t end) {
+      thread_local Candidates cand;
+      for (std::size_t cell = begin; cell < end; ++cell) {
+        cand.gather(grid, points, cell);
+        if (cand.index.size() > most) continue;
+        // The previous point's k-th distance plus the step to this one bounds this one's (triangle inequality:
+        // its k nearest, with the previous point itself in place of this one, are all that close).
+        float reach = INFINITY;
+        Vec3f previous = Vec3f::Zero();
+        for (std::uint32_t r = grid.start[cell]; r < grid.start[cell + 1]; ++r) {
+          const auto i = static_cast<std::uint32_t>(grid.order[r]);
+          const float bound = (reach + (points[i] - previous).norm()) * (1 + 1e-5f);
+          reach = INFINITY;
+          if (!cand.nearest(points[i], i, k, bound * bound) && !cand.nearest(points[i], i, k, INFINITY)) continue;
+          const float kth = std::sqrt(std::bit_cast<float>(std::uint32_t(cand.keys[k - 1] >> 32)));
+          reach = kth;
+          previous = points[i];
+          // A margin far above float rounding: a point outside the 27 cells can neither be nearer nor tie.
+          if (!(double(kth) < way_out(grid.frame, points[i], cand.centre) * (1 - 1e-5))) continue;
+          for (std::size_t m = 0; m < k; ++m) {
+            indices[i * k + m] = static_cast<std::uint32_t>(cand.keys[m]);
+            distances[i * k + m] = std::sqrt(std::bit_cast<float>(std::uint32_t(cand.keys[m] >> 32)));
+          }
+          left[i] = 0;
+        }
+      }
+    }, 16);
+  }
+  std::vector<std::uint32_t> rest;
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (left[i]) rest.push_back(i);
+  return rest;
+}
+
+}  // namespace pcsketch::neighbourhood::detail

@@ -1,0 +1,29 @@
+#pragma once
+// Morton (Z-order) codes of integer cell coordinates: near cells get near codes, so sorting by code keeps space
+// together in memory.
+
+#include <cstdint>
+
+namespace pcsketch::neighbourhood::detail {
+
+/// Bits per axis of a code: three axes fill 63 bits.
+inline constexpr int kMortonBits = 21;
+inline constexpr std::uint32_t kMortonMax = (1u << kMortonBits) - 1;
+
+/// Spreads the low 21 bits of v so that two zero bits separate consecutive bits.
+inline std::uint64_t spread_bits(std::uint64_t v) {
+  v &= kMortonMax;
+  v = (v | v << 32) & 0x1f00000000ffffULL;
+  v = (v | v << 16) & 0x1f0000ff0000ffULL;
+  v = (v | v << 8) & 0x100f00f00f00f00fULL;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
+
+/// The code of cell (x, y, z), each in [0, kMortonMax].
+inline std::uint64_t morton(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  return spread_bits(x) | spread_bits(y) << 1 | spread_bits(z) << 2;
+}
+
+}  // namespace pcsketch::neighbourhood::detail
