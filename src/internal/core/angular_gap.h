@@ -3,6 +3,8 @@
 // an open scan's border (tangent plane) both ask it.
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <span>
 #include <utility>
@@ -41,14 +43,30 @@ inline float pseudo_angle(const Vec2f& d) {
 }
 
 /// largest_gap(dirs).first > threshold, without arctangents: the boundary test asks it of every point and most
-/// answers are no. `dirs` (none zero) is reordered by angle.
-inline bool gap_exceeds(std::vector<Vec2f>& dirs, float threshold) {
+/// answers are no. `dirs` holds no zero direction. The directions are ordered by one key each, (pseudo-angle bits,
+/// index) in one word, not by a comparator that recomputes two pseudo-angles per comparison (the test was 6% of a
+/// 1M-point draw); ties in angle keep their index order. Most points never get that far (the sieve below).
+inline bool gap_exceeds(std::span<const Vec2f> dirs, float threshold) {
   if (dirs.size() < 2) return threshold < 2 * kGapPi;
-  std::sort(dirs.begin(), dirs.end(), [](const Vec2f& a, const Vec2f& b) { return pseudo_angle(a) < pseudo_angle(b); });
+  // First a sieve without sorting: 32 bins of equal pseudo-angle (1/8 each). The pseudo-angle grows at least half a
+  // unit per radian, so a gap over the threshold spans at least floor(4 · threshold) - 1 whole bins; one bin less
+  // allows for rounding at bin edges. No run of that many empty bins: no gap over the threshold.
+  if (const int run = static_cast<int>(std::floor(4 * threshold)) - 2; run >= 1) {
+    std::uint32_t filled = 0;
+    for (const Vec2f& d : dirs) filled |= 1u << std::min(31, static_cast<int>(8 * pseudo_angle(d)));
+    std::uint32_t empty_run = ~filled;
+    for (int r = 1; r < run && empty_run != 0; ++r) empty_run &= std::rotr(~filled, r);
+    if (empty_run == 0) return false;
+  }
+  thread_local std::vector<std::uint64_t> order;
+  order.resize(dirs.size());
+  for (std::size_t i = 0; i < dirs.size(); ++i)
+    order[i] = std::uint64_t{std::bit_cast<std::uint32_t>(pseudo_angle(dirs[i]))} << 32 | i;  // angles ≥ 0: bits order
+  std::sort(order.begin(), order.end());
   const float cos_t = std::cos(threshold);
-  for (std::size_t i = 0; i < dirs.size(); ++i) {
-    const Vec2f& a = dirs[i];
-    const Vec2f& b = dirs[(i + 1) % dirs.size()];
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const Vec2f& a = dirs[static_cast<std::uint32_t>(order[i])];
+    const Vec2f& b = dirs[static_cast<std::uint32_t>(order[(i + 1) % order.size()])];
     const float cross = a.x() * b.y() - a.y() * b.x();
     const float dot_bound = cos_t * a.norm() * b.norm();
     // The counter-clockwise angle from a to b is over 180° where cross < 0; its cosine falls over [0°, 180°] and
