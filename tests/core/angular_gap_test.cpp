@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <random>
 
 namespace pcsketch::detail {
@@ -51,6 +52,22 @@ TEST(AngularGap, GapExceedsAgreesWithTheMeasuredGap) {
   // Both answers were asked many times.
   EXPECT_GT(over, compared / 10);
   EXPECT_LT(over, compared * 9 / 10);
+}
+
+TEST(AngularGap, ApproximateAngleWithinItsBound) {
+  float worst = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const double t = 2 * std::numbers::pi * i / 100000.0;
+    for (const double r : {1e-20, 1.0, 1e20}) {
+      const Vec2f d(static_cast<float>(r * std::cos(t)), static_cast<float>(r * std::sin(t)));
+      const double exact = std::atan2(double(d.y()), double(d.x()));
+      const double wrapped = std::remainder(double(approx_angle(d)) - exact, 2 * std::numbers::pi);
+      worst = std::max(worst, static_cast<float>(std::abs(wrapped)));
+      ASSERT_GE(approx_angle(d), 0.f);
+      ASSERT_LE(approx_angle(d), 2 * kGapPi);
+    }
+  }
+  EXPECT_LT(worst, kApproxAngleError);
 }
 
 TEST(AngularGap, FewDirections) {
