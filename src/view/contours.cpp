@@ -14,6 +14,7 @@
 #include "core/parallel_chunks.h"
 #include "core/progress.h"
 #include "contour_walk.h"
+#include "image_cells.h"
 #include "point_grid.h"
 
 namespace pcsketch::view {
@@ -22,6 +23,8 @@ namespace {
 
 constexpr float kPi = 3.14159265358979f;
 constexpr float kDegToRad = kPi / 180.f;
+/// Image cell, in mean point spacings, within which one point stands for all in the outline test.
+constexpr float kImageCellFactor = 0.25f;
 
 using pcsketch::detail::gap_exceeds;
 using pcsketch::detail::largest_gap;
@@ -309,6 +312,10 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
     }
   if (!valid.empty()) {
     mean_px /= static_cast<double>(valid.size());
+    // Points a quarter spacing apart in the image tell the outline test nothing new: one of each such cell is asked.
+    // The spacing is a low percentile of the points' own, so that the dense parts of an uneven cloud keep theirs.
+    valid = detail::first_in_image_cells(cp.projected, std::move(valid),
+                                         kImageCellFactor * detail::low_spacing(cp.spacing_px, valid));
     std::vector<Vec2f> uv(valid.size());
     for (std::size_t v = 0; v < valid.size(); ++v) uv[v] = cp.projected[valid[v]].head<2>();
     const detail::PointGrid<2> grid(uv, o.radius_factor * static_cast<float>(mean_px));

@@ -111,6 +111,15 @@ TEST(Contours, TorusAlongItsAxisHasRimAndHole) {
   EXPECT_NEAR(radii[1], (R + r) * view.camera.scale, 2.f);
 }
 
+// A tube seen along its axis: its whole side projects onto one circle, hundreds of points per pixel of it (as a CAD
+// part's faces along a front view). One point per quarter-spacing image cell is asked, and the outline is still
+// the circle, closed and within a pixel.
+TEST(Contours, TubeAlongItsAxisHasItsCircleAsOutline) {
+  const Analysed tube(test::cylinder(1.f, 2.f, {.n = 60000, .seed = 3}));
+  const ViewResult view = tube.view({.direction = Vec3d(0, 0, 1)});
+  expect_one_closed_circle(view, 1.f);
+}
+
 TEST(Contours, RejectsNonPositiveSpacing) {
   const PointCloud s = test::sphere(1.f, {.n = 100});
   const Camera camera = make_camera(s.positions, s.origin);
