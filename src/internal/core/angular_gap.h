@@ -50,10 +50,12 @@ inline constexpr float kApproxAngleError = 0.005f;
 inline float approx_angle(const Vec2f& d) {
   const float ax = std::abs(d.x()), ay = std::abs(d.y());
   const float t = std::min(ax, ay) / std::max(ax, ay);
-  float a = t * (0.25f * kGapPi + 0.273f * (1 - t));   // [0, π/4]
-  if (ay > ax) a = 0.5f * kGapPi - a;                  // first quadrant
-  if (d.x() < 0) a = kGapPi - a;                       // upper half
-  return d.y() < 0 ? std::max(0.f, 2 * kGapPi - a) : a;  // [0, 2π]
+  float a = t * (0.25f * kGapPi + 0.273f * (1 - t));  // [0, π/4]
+  // Reflections by arithmetic, not branches: the signs are random from one direction to the next.
+  a += static_cast<float>(ay > ax) * (0.5f * kGapPi - 2 * a);  // first quadrant
+  a += static_cast<float>(d.x() < 0) * (kGapPi - 2 * a);       // upper half
+  a += static_cast<float>(d.y() < 0) * (2 * kGapPi - 2 * a);   // [0, 2π]
+  return std::max(a, 0.f);
 }
 
 /// largest_gap(dirs).first > threshold, without arctangents: the boundary test asks it of every point and most
@@ -64,11 +66,11 @@ inline bool gap_exceeds(std::span<const Vec2f> dirs, float threshold) {
   if (dirs.size() < 2) return threshold < 2 * kGapPi;
   // First a sieve without sorting: 64 bins of equal angle. A gap over the threshold holds a run of whole empty bins
   // as wide as the threshold less the angles' error on both sides, less one bin at each end. No such run: no gap.
-  constexpr float kBin = 2 * kGapPi / 64;
+  constexpr float kBin = 2 * kGapPi / 64, kPerBin = 1 / kBin;
   if (const int run = static_cast<int>(std::floor((threshold - 2 * kApproxAngleError) / kBin)) - 2; run >= 1) {
     std::uint64_t filled = 0;
     for (const Vec2f& d : dirs) {
-      const float bin = approx_angle(d) / kBin;
+      const float bin = approx_angle(d) * kPerBin;
       filled |= std::uint64_t{1} << (bin >= 0 ? std::min(63, static_cast<int>(bin)) : 0);  // NaN: bin 0
     }
     std::uint64_t empty_run = ~filled;
