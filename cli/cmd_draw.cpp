@@ -186,6 +186,8 @@ void run_draw(DrawArgs& args, const CLI::App& cmd, const GlobalOptions& global) 
   validate(args.options);
   for (const NamedCamera& v : views) validate(args.options, v.camera);
   check_outputs(args, views);
+  for_image(args.read, views.front().camera);
+  check_full_resolution(args.read, args.input, point_bytes(args.options.surface, 1));
 
   DrawOptions& options = args.options;
   options.progress = make_progress(global);

@@ -1,0 +1,263 @@
+// Streamed read with voxel thinning: two passes over the mapped file, never a whole RawCloud. The first finds the
+// bounding box (and the robust box for the resolution rule), the second keeps per occupied cell the point nearest
+// its centre in a hash map. The rule, the grid and the tie-breaks are decimate()'s, computed on the same float
+// positions, so the kept points are exactly those of the in-memory read followed by decimate().
+
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <chrono>
+#include <cmath>
+#include <tuple>
+#include <unordered_map>
+
+#include "columns.h"
+#include "point_stream.h"
+
+namespace pcsketch::io::detail {
+namespace {
+
+using Cell = std::array<std::int64_t, 3>;
+
+struct CellHash {
+  std::size_t operator()(const Cell& c) const {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (const std::int64_t v : c) {
+      h ^= static_cast<std::uint64_t>(v) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+      h *= 0xbf58476d1ce4e5b9ull;
+    }
+    return static_cast<std::size_t>(h ^ (h >> 31));
+  }
+};
+
+bool inside(const ReadOptions& options, const Vec3d& p) {
+  return !options.crop ||
+         ((p.array() >= options.crop->min.array()).all() && (p.array() <= options.crop->max.array()).all());
+}
+
+/// Pass 1: counts, bounding box, normal statistics and a sample of positions.
+class Survey final : public PointSink {
+ public:
+  Survey(const ReadOptions& options, std::uint64_t count, const ProgressReporter& report)
+      : options_(options), count_(count), stride_(std::max<std::uint64_t>(1, count / kSurveySample)), report_(report) {}
+
+  void points(const PointChunk& c) override {
+    for (std::size_t i = 0; i < c.positions.size(); ++i) {
+      const Vec3d& p = c.positions[i];
+      if (!p.allFinite()) {
+        ++non_finite;
+        continue;
+      }
+      if (!inside(options_, p)) {
+        ++cropped;
+        continue;
+      }
+      lo = kept == 0 ? p : lo.cwiseMin(p);
+      hi = kept == 0 ? p : hi.cwiseMax(p);
+      ++kept;
+      if (!c.normals.empty()) {
+        const Vec3f& n = c.normals[i];
+        bad_normals += !(n.allFinite() && n.norm() > 0.f);
+        unit_normals += std::abs(n.norm() - 1.f) <= kUnitTolerance;
+      }
+      if ((c.first + i) % stride_ == 0) sample.push_back(p);
+    }
+    report_(0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_));
+  }
+
+  std::uint64_t non_finite = 0, cropped = 0, kept = 0, bad_normals = 0, unit_normals = 0;
+  Vec3d lo = Vec3d::Zero(), hi = Vec3d::Zero();
+  std::vector<Vec3d> sample;
+
+ private:
+  const ReadOptions& options_;
+  std::uint64_t count_, stride_;
+  const ProgressReporter& report_;
+};
+
+struct Best {
+  double distance2;
+  std::array<float, 3> position;
+  std::uint64_t index;
+  Vec3f normal;
+  Rgb8 color;
+  bool operator<(const Best& o) const {
+    return std::tie(distance2, position, index) < std::tie(o.distance2, o.position, o.index);
+  }
+};
+
+/// Pass 2: per occupied cell, the candidate decimate() would keep.
+class Voxeliser final : public PointSink {
+ public:
+  Voxeliser(const ReadOptions& options, const Vec3d& origin, const Vec3d& lo, double cell, std::uint64_t count,
+            const ProgressReporter& report)
+      : options_(options), origin_(origin), lo_(lo), cell_(cell), count_(count), report_(report) {}
+
+  void points(const PointChunk& c) override {
+    for (std::size_t i = 0; i < c.positions.size(); ++i) {
+      const Vec3d& p = c.positions[i];
+      if (!p.allFinite() || !inside(options_, p)) continue;
+      const Vec3f f = (p - origin_).cast<float>();
+      const Vec3d q = (f.cast<double>() - lo_) / cell_;
+      Cell key;
+      for (int a = 0; a < 3; ++a) key[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(std::floor(q[a]));
+      const Vec3d centre{double(key[0]) + 0.5, double(key[1]) + 0.5, double(key[2]) + 0.5};
+      const Best b{(q - centre).squaredNorm(), {f.x(), f.y(), f.z()}, c.first + i,
+                   c.normals.empty() ? Vec3f::Zero() : c.normals[i], c.colors.empty() ? Rgb8{} : c.colors[i]};
+      const auto [it, inserted] = cells.try_emplace(key, b);
+      if (!inserted && b < it->second) it->second = b;
+    }
+    report_(0.5 + 0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_));
+  }
+
+  std::unordered_map<Cell, Best, CellHash> cells;
+
+ private:
+  const ReadOptions& options_;
+  Vec3d origin_, lo_;
+  double cell_;
+  std::uint64_t count_;
+  const ProgressReporter& report_;
+};
+
+// check_normals() of the in-memory read, from the survey's counts.
+bool normals_usable(const Survey& s, ReadResult& result, const Source& source) {
+  if (s.bad_normals > 0) {
+    result.warnings.push_back(source.path + ": " + std::to_string(s.bad_normals) +
+                              " normals are zero or not finite; normals ignored");
+    return false;
+  }
+  const double unit = static_cast<double>(s.unit_normals) / static_cast<double>(s.kept);
+  if (unit < kUnitShare) {
+    result.warnings.push_back(source.path + ": the file's normals are not unit vectors (only " +
+                              std::to_string(static_cast<int>(unit * 100.0)) +
+                              "% are); they are recomputed from the points");
+    return false;
+  }
+  return true;
+}
+
+void check_survey(const Survey& s, const StreamHeader& header, ReadResult& result, const Source& source) {
+  if (header.count == 0) source.fail(header.format + ": the file holds no points");
+  if (s.non_finite == header.count)
+    source.fail(header.format + ": all " + std::to_string(header.count) +
+                " points have a NaN or infinite coordinate");
+  if (s.non_finite > 0)
+    result.warnings.push_back(source.path + ": dropped " + std::to_string(s.non_finite) + " of " +
+                              std::to_string(header.count) + " points with a NaN or infinite coordinate");
+  if (s.kept == 0)
+    source.fail(header.format + ": none of the " + std::to_string(header.count - s.non_finite) +
+                " points is left by the crop box");
+}
+
+void fill_cloud(const Voxeliser& v, bool normals, bool colors, PointCloud& cloud) {
+  std::vector<const Best*> kept;
+  kept.reserve(v.cells.size());
+  for (const auto& entry : v.cells) kept.push_back(&entry.second);
+  std::sort(kept.begin(), kept.end(), [](const Best* a, const Best* b) { return a->index < b->index; });
+  cloud.positions.reserve(kept.size());
+  for (const Best* b : kept) cloud.positions.emplace_back(b->position[0], b->position[1], b->position[2]);
+  if (normals)
+    for (const Best* b : kept) cloud.normals.push_back(b->normal.normalized());
+  if (colors)
+    for (const Best* b : kept) cloud.colors.push_back(b->color);
+}
+
+}  // namespace
+
+Vec3d robust_extent(std::vector<Vec3d> sample) {
+  Vec3d extent = Vec3d::Zero();
+  if (sample.empty()) return extent;
+  const std::size_t lo = sample.size() / 200, hi = sample.size() - 1 - sample.size() / 200;
+  std::vector<double> axis(sample.size());
+  for (int a = 0; a < 3; ++a) {
+    for (std::size_t i = 0; i < sample.size(); ++i) axis[i] = sample[i][a];
+    std::nth_element(axis.begin(), axis.begin() + static_cast<std::ptrdiff_t>(lo), axis.end());
+    const double low = axis[lo];
+    std::nth_element(axis.begin(), axis.begin() + static_cast<std::ptrdiff_t>(hi), axis.end());
+    extent[a] = axis[hi] - low;
+  }
+  return extent;
+}
+
+std::string resolution_reason(const OutputResolution& r, std::uint64_t count) {
+  char text[200];
+  std::snprintf(text, sizeof text, "%llu points, over the %zu budget of a %dx%d %s image: cells of %.3g px",
+                static_cast<unsigned long long>(count), r.budget(), r.width, r.height,
+                r.perspective ? "perspective" : "orthographic", r.cell_pixels);
+  return text;
+}
+
+std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t to) {
+  static const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const auto base = reinterpret_cast<std::uintptr_t>(bytes.data());
+  const std::uintptr_t begin = (base + from + page - 1) / page * page, end = (base + to) / page * page;
+  if (end <= begin) return from;
+  // The mapping is private and read-only: dropped pages are read again from the file if touched.
+  ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
+  return end - base;
+}
+
+std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions& options, std::size_t chunk_points) {
+  const DecimateOptions& d = options.decimate;
+  if (!options.classes.empty() || !options.drop_classes.empty()) return std::nullopt;
+  const std::optional<StreamHeader> header = ply_stream_header(source);
+  if (!header) return std::nullopt;
+  const bool by_resolution = d.resolution && header->count > d.resolution->budget();
+  if (!d.voxel && !by_resolution) return std::nullopt;
+
+  const auto start = std::chrono::steady_clock::now();
+  const ProgressReporter report(options.progress, "read");
+  report(0.0);
+  Survey survey(options, header->count, report);
+  stream_ply(source, chunk_points, survey);
+  ReadResult result;
+  result.points_in_file = header->count;
+  result.dropped_non_finite = survey.non_finite;
+  result.dropped_by_filter = survey.cropped;
+  check_survey(survey, *header, result, source);
+
+  PointCloud& cloud = result.cloud;
+  cloud.origin = choose_origin(survey.lo, survey.hi, options);
+  // decimate()'s grid is anchored at the float box, and rounding to float keeps the order: the float box is the
+  // double box rounded.
+  const Vec3f lo = (survey.lo - cloud.origin).cast<float>(), hi = (survey.hi - cloud.origin).cast<float>();
+  if (!lo.allFinite() || !hi.allFinite())
+    source.fail("the points lie " + number((survey.hi - survey.lo).cwiseAbs().maxCoeff()) +
+                " units apart, beyond float range");
+  DecimateReport thinning;
+  thinning.streamed = true;
+  thinning.points_before = survey.kept;
+  thinning.cell = d.voxel.value_or(0.0);
+  thinning.reason = d.voxel ? "--voxel" : "";
+  if (by_resolution) {
+    const double cell = resolution_cell(*d.resolution, robust_extent(survey.sample));
+    if (cell > thinning.cell) {
+      thinning.cell = cell;
+      thinning.reason = resolution_reason(*d.resolution, header->count);
+    }
+  }
+  // A box without extent (all points on a line or at one place): a cell far below any spacing.
+  if (!(thinning.cell > 0.0)) thinning.cell = std::max((survey.hi - survey.lo).maxCoeff() * 1e-7, 1e-30);
+  Voxeliser voxels(options, cloud.origin, lo.cast<double>(), thinning.cell, header->count, report);
+  stream_ply(source, chunk_points, voxels);
+  const bool normals = header->has_normals && options.keep_normals && normals_usable(survey, result, source);
+  fill_cloud(voxels, normals, header->has_colors && options.keep_colors, cloud);
+  thinning.points_after = cloud.size();
+  thinning.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.format = header->format;
+  result.other_attributes = header->other_attributes;
+  result.decimation = thinning;
+  if (d.max_points && cloud.size() > *d.max_points) {
+    const DecimateReport more = decimate(cloud, {.max_points = d.max_points});
+    result.decimation->points_after = more.points_after;
+    result.decimation->cell = more.cell;
+    result.decimation->reason += ", then --max-points";
+  }
+  report(1.0);
+  return result;
+}
+
+}  // namespace pcsketch::io::detail
