@@ -11,26 +11,13 @@
 #include <chrono>
 #include <cmath>
 #include <tuple>
-#include <unordered_map>
 
+#include "cell_table.h"
 #include "columns.h"
 #include "point_stream.h"
 
 namespace pcsketch::io::detail {
 namespace {
-
-using Cell = std::array<std::int64_t, 3>;
-
-struct CellHash {
-  std::size_t operator()(const Cell& c) const {
-    std::uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (const std::int64_t v : c) {
-      h ^= static_cast<std::uint64_t>(v) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
-      h *= 0xbf58476d1ce4e5b9ull;
-    }
-    return static_cast<std::size_t>(h ^ (h >> 31));
-  }
-};
 
 bool inside(const ReadOptions& options, const Vec3d& p) {
   return !options.crop ||
@@ -77,23 +64,13 @@ class Survey final : public PointSink {
   const ProgressReporter& report_;
 };
 
-struct Best {
-  double distance2;
-  std::array<float, 3> position;
-  std::uint64_t index;
-  Vec3f normal;
-  Rgb8 color;
-  bool operator<(const Best& o) const {
-    return std::tie(distance2, position, index) < std::tie(o.distance2, o.position, o.index);
-  }
-};
-
 /// Pass 2: per occupied cell, the candidate decimate() would keep.
 class Voxeliser final : public PointSink {
  public:
   Voxeliser(const ReadOptions& options, const Vec3d& origin, const Vec3d& lo, double cell, std::uint64_t count,
-            const ProgressReporter& report)
-      : options_(options), origin_(origin), lo_(lo), cell_(cell), count_(count), report_(report) {}
+            bool normals, bool colors, const ProgressReporter& report)
+      : cells(normals, colors), options_(options), origin_(origin), lo_(lo), cell_(cell), count_(count),
+        report_(report) {}
 
   void points(const PointChunk& c) override {
     for (std::size_t i = 0; i < c.positions.size(); ++i) {
@@ -101,18 +78,16 @@ class Voxeliser final : public PointSink {
       if (!p.allFinite() || !inside(options_, p)) continue;
       const Vec3f f = (p - origin_).cast<float>();
       const Vec3d q = (f.cast<double>() - lo_) / cell_;
-      Cell key;
-      for (int a = 0; a < 3; ++a) key[static_cast<std::size_t>(a)] = static_cast<std::int64_t>(std::floor(q[a]));
+      CellTable::Key key;
+      for (int a = 0; a < 3; ++a) key[static_cast<std::size_t>(a)] = static_cast<std::int32_t>(std::floor(q[a]));
       const Vec3d centre{double(key[0]) + 0.5, double(key[1]) + 0.5, double(key[2]) + 0.5};
-      const Best b{(q - centre).squaredNorm(), {f.x(), f.y(), f.z()}, c.first + i,
-                   c.normals.empty() ? Vec3f::Zero() : c.normals[i], c.colors.empty() ? Rgb8{} : c.colors[i]};
-      const auto [it, inserted] = cells.try_emplace(key, b);
-      if (!inserted && b < it->second) it->second = b;
+      cells.offer(key, (q - centre).squaredNorm(), {f.x(), f.y(), f.z()}, c.first + i,
+                  c.normals.empty() ? Vec3f::Zero() : c.normals[i], c.colors.empty() ? Rgb8{} : c.colors[i]);
     }
     report_(0.5 + 0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_));
   }
 
-  std::unordered_map<Cell, Best, CellHash> cells;
+  CellTable cells;
 
  private:
   const ReadOptions& options_;
@@ -150,19 +125,6 @@ void check_survey(const Survey& s, const StreamHeader& header, ReadResult& resul
   if (s.kept == 0)
     source.fail(header.format + ": none of the " + std::to_string(header.count - s.non_finite) +
                 " points is left by the crop box");
-}
-
-void fill_cloud(const Voxeliser& v, bool normals, bool colors, PointCloud& cloud) {
-  std::vector<const Best*> kept;
-  kept.reserve(v.cells.size());
-  for (const auto& entry : v.cells) kept.push_back(&entry.second);
-  std::sort(kept.begin(), kept.end(), [](const Best* a, const Best* b) { return a->index < b->index; });
-  cloud.positions.reserve(kept.size());
-  for (const Best* b : kept) cloud.positions.emplace_back(b->position[0], b->position[1], b->position[2]);
-  if (normals)
-    for (const Best* b : kept) cloud.normals.push_back(b->normal.normalized());
-  if (colors)
-    for (const Best* b : kept) cloud.colors.push_back(b->color);
 }
 
 }  // namespace
@@ -241,10 +203,14 @@ std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions&
   }
   // A box without extent (all points on a line or at one place): a cell far below any spacing.
   if (!(thinning.cell > 0.0)) thinning.cell = std::max((survey.hi - survey.lo).maxCoeff() * 1e-7, 1e-30);
-  Voxeliser voxels(options, cloud.origin, lo.cast<double>(), thinning.cell, header->count, report);
-  stream_ply(source, chunk_points, voxels);
+  // A grid of more than 2^30 cells a side (a --voxel far below the box): decimate() in memory has 64-bit cells.
+  if (((survey.hi - survey.lo) / thinning.cell).maxCoeff() >= CellTable::kMaxIndex - 2) return std::nullopt;
   const bool normals = header->has_normals && options.keep_normals && normals_usable(survey, result, source);
-  fill_cloud(voxels, normals, header->has_colors && options.keep_colors, cloud);
+  Voxeliser voxels(options, cloud.origin, lo.cast<double>(), thinning.cell, header->count, normals,
+                   header->has_colors && options.keep_colors, report);
+  stream_ply(source, chunk_points, voxels);
+  voxels.cells.take(cloud.positions, cloud.normals, cloud.colors);
+  for (Vec3f& n : cloud.normals) n.normalize();
   thinning.points_after = cloud.size();
   thinning.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.format = header->format;
