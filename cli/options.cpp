@@ -142,6 +142,19 @@ std::string describe_reduction(const io::ReadResult& read) {
   return out;
 }
 
+nlohmann::json input_json(const io::ReadResult& read) {
+  if (!read.decimation) return nullptr;
+  const io::DecimateReport& d = *read.decimation;
+  return {{"points_in_file", read.points_in_file},
+          {"dropped_non_finite", read.dropped_non_finite},
+          {"dropped_by_filter", read.dropped_by_filter},
+          {"points_kept", d.points_after},
+          {"thinning", {{"points_before", d.points_before},
+                        {"cell", d.cell},
+                        {"reason", d.reason},
+                        {"streamed", d.streamed}}}};
+}
+
 void add_analysis_flags(CLI::App* cmd, DrawOptions& o) {
   add_table_flags(cmd, o, [](const options::Option& opt) { return analysis_option(opt); });
   // One flag, two fields: surface.orient_file_normals and surface.file_normal_disagreement.

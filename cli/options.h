@@ -36,6 +36,10 @@ double available_memory_bytes();
 /// kReadBytesPerPoint + `bytes_per_point` exceeds available_memory_bytes(). @throws OptionError (exit 1).
 void check_full_resolution(const io::ReadOptions& read, const std::string& input, double bytes_per_point);
 
+/// What the read kept, for the JSON output ("input": points in the file, dropped, kept, the thinning's cell and
+/// reason); null when nothing was thinned, so that the JSON of an untouched cloud is unchanged.
+nlohmann::json input_json(const io::ReadResult& read);
+
 /// One line for --timings and info: what cropping, class filters and thinning left of the file's points.
 std::string describe_reduction(const io::ReadResult& read);
 
