@@ -2,8 +2,9 @@
 // output's resolution while streamed, and the contour precision/recall of that drawing against the drawing of
 // every point (both at 1024 px, default options, visible contours sampled every 0.5 px, matched within 2 px).
 //
-//   bench_stream [--full] FILE.ply ...      (files made by `pcsketch sample MESH -n N -o FILE.ply`)
+//   bench_stream [--full] [--cell-pixels C] FILE.ply ...   (files made by `pcsketch sample MESH -n N -o FILE.ply`)
 //
+// --cell-pixels: the thinning's cell in pixels instead of the default 0.5 (to see what a coarser one costs).
 // --full also draws each file from all its points (the reference for precision/recall; needs ~330 bytes a point).
 // Each configuration runs in its own process, so that its peak RSS is its own. No assertions: it prints a table.
 
@@ -25,10 +26,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // One drawing: seconds (read, total), points kept, peak RSS and the visible contour samples.
-std::string measure(const std::string& path, bool full) {
+std::string measure(const std::string& path, bool full, double cell_pixels) {
   const auto start = Clock::now();
   io::ReadOptions read;
-  if (!full) read.decimate.resolution = io::OutputResolution{};  // draw's default at 1024 x 1024
+  if (!full) read.decimate.resolution = io::OutputResolution{.cell_pixels = cell_pixels};  // draw's at 1024 px
   io::ReadResult r = io::read_point_cloud(path, read);
   const double read_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const std::size_t kept = r.cloud.size();
@@ -56,14 +57,24 @@ std::vector<Vec2f> points_of(const nlohmann::json& samples) {
 
 int run(int argc, char** argv) {
   bool full = false;
+  double cell_pixels = io::OutputResolution{}.cell_pixels;
   std::vector<std::string> files;
-  for (int i = 1; i < argc; ++i) (std::string(argv[i]) == "--full" ? full = true : (files.emplace_back(argv[i]), true));
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--full") {
+      full = true;
+    } else if (arg == "--cell-pixels" && i + 1 < argc) {
+      cell_pixels = std::stod(argv[++i]);
+    } else {
+      files.push_back(arg);
+    }
+  }
   if (files.empty()) throw std::runtime_error("usage: bench_stream [--full] FILE.ply ...");
-  std::cout << "load average before: " << load_average() << "\n";
+  std::cout << "load average before: " << load_average() << "; cell " << cell_pixels << " px\n";
   Table table({"file", "points", "kept", "cell", "read s", "total s", "peak RSS", "full s", "full RSS",
                "contour P", "contour R"});
   for (const std::string& file : files) {
-    const nlohmann::json thin = nlohmann::json::parse(run_isolated([&] { return measure(file, false); }));
+    const nlohmann::json thin = nlohmann::json::parse(run_isolated([&] { return measure(file, false, cell_pixels); }));
     std::vector<std::string> row{file,
                                  grouped(thin["in_file"].get<std::size_t>()),
                                  grouped(thin["kept"].get<std::size_t>()),
@@ -72,7 +83,7 @@ int run(int argc, char** argv) {
                                  fixed(thin["seconds"].get<double>(), 2),
                                  mebibytes(thin["rss"].get<std::size_t>())};
     if (full) {
-      const nlohmann::json all = nlohmann::json::parse(run_isolated([&] { return measure(file, true); }));
+      const nlohmann::json all = nlohmann::json::parse(run_isolated([&] { return measure(file, true, cell_pixels); }));
       const test::LineMatch m =
           test::match_lines(points_of(thin["contours"]), points_of(all["contours"]), /*tolerance_px=*/2.f);
       row.insert(row.end(), {fixed(all["seconds"].get<double>(), 2), mebibytes(all["rss"].get<std::size_t>()),

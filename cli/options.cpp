@@ -79,7 +79,7 @@ void add_read_options(CLI::App* cmd, io::ReadOptions& read) {
   read.decimate.resolution = io::OutputResolution{};
   cmd->add_flag_callback(
          "--full-resolution", [&read] { read.decimate.resolution.reset(); },
-         "Keep every point of a cloud larger than the image needs (by default one per half-pixel cell is kept); "
+         "Keep every point of a cloud larger than the image needs (by default one per cell of about a pixel is kept); "
          "refused at once when the estimated memory exceeds what the machine has available")
       ->group(group);
 }

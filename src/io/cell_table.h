@@ -23,10 +23,17 @@ class CellTable {
 
   CellTable(bool normals, bool colors) : normals_(normals), colors_(colors) { resize(1 << 16); }
 
+  /// Grows the table now so that `more` offers cannot move it (the slots prefetch() touched stay valid).
+  void reserve_for(std::size_t more) {
+    while (2 * (size_ + more) > capacity_) resize(2 * capacity_);
+  }
+  /// Starts loading the first slot `key` probes: offers in batches hide the table's cache misses.
+  void prefetch(const Key& key) const { __builtin_prefetch(&entries_[hash(key) & (capacity_ - 1)]); }
+
   /// A candidate for cell `key`; it replaces the cell's representative when nearer its centre (ties as above).
   void offer(const Key& key, double distance2, const std::array<float, 3>& position, std::uint64_t index,
              const Vec3f& normal, const Rgb8& color) {
-    if (2 * (size_ + 1) > entries_.size()) resize(2 * entries_.size());
+    reserve_for(1);
     std::size_t s = slot(key);
     Entry& e = entries_[s];
     if (e.index == kEmpty) {
@@ -49,7 +56,7 @@ class CellTable {
     // (file index, slot) pairs sort without chasing the table.
     std::vector<std::pair<std::uint64_t, std::uint32_t>> order;
     order.reserve(size_);
-    for (std::size_t s = 0; s < entries_.size(); ++s)
+    for (std::size_t s = 0; s < capacity_; ++s)
       if (entries_[s].index != kEmpty) order.emplace_back(entries_[s].index, static_cast<std::uint32_t>(s));
     std::sort(order.begin(), order.end());
     std::vector<std::uint32_t> used(order.size());
@@ -68,10 +75,11 @@ class CellTable {
   static constexpr std::uint64_t kEmpty = std::numeric_limits<std::uint64_t>::max();
   struct Entry {
     Key key{};
-    double distance2 = 0;
     std::array<float, 3> position{};
+    double distance2 = 0;
     std::uint64_t index = kEmpty;
   };
+  static_assert(sizeof(Entry) == 40, "a slot is 40 bytes: docs/io.md");
 
   static std::uint64_t hash(const Key& k) {
     std::uint64_t h = static_cast<std::uint32_t>(k[0]) * 0x9e3779b97f4a7c15ull;
@@ -83,20 +91,22 @@ class CellTable {
 
   // The slot holding `key`, or the empty slot where it goes.
   std::size_t slot(const Key& key) const {
-    const std::size_t mask = entries_.size() - 1;
+    const std::size_t mask = capacity_ - 1;
     std::size_t s = static_cast<std::size_t>(hash(key)) & mask;
     while (entries_[s].index != kEmpty && entries_[s].key != key) s = (s + 1) & mask;
     return s;
   }
 
   void resize(std::size_t capacity) {
-    std::vector<Entry> old = std::move(entries_);
+    const std::vector<Entry> old = std::move(entries_);
+    const std::size_t old_capacity = capacity_;
     std::vector<Vec3f> old_normals = std::move(normals_of_);
     std::vector<Rgb8> old_colors = std::move(colors_of_);
     entries_.assign(capacity, Entry{});
+    capacity_ = capacity;
     if (normals_) normals_of_.assign(capacity, Vec3f::Zero());
     if (colors_) colors_of_.assign(capacity, Rgb8{});
-    for (std::size_t i = 0; i < old.size(); ++i) {
+    for (std::size_t i = 0; i < old_capacity; ++i) {
       if (old[i].index == kEmpty) continue;
       const std::size_t s = slot(old[i].key);
       entries_[s] = old[i];
@@ -107,6 +117,7 @@ class CellTable {
 
   bool normals_, colors_;
   std::vector<Entry> entries_;
+  std::size_t capacity_ = 0;  ///< a power of two
   std::vector<Vec3f> normals_of_;
   std::vector<Rgb8> colors_of_;
   std::size_t size_ = 0;

@@ -208,7 +208,7 @@ void check_normals(RawCloud& raw, ReadResult& result, const Source& source) {
 void thin(ReadResult& result, const DecimateOptions& options) {
   PointCloud& cloud = result.cloud;
   DecimateOptions d = options;
-  std::string reason = d.voxel ? "--voxel" : "--max-points";
+  std::string reason = d.voxel && d.max_points ? "--voxel and --max-points" : d.voxel ? "--voxel" : "--max-points";
   if (d.resolution && result.points_in_file > d.resolution->budget() && !cloud.empty()) {
     const std::size_t stride = std::max<std::size_t>(1, cloud.size() / detail::kSurveySample);
     std::vector<Vec3d> sample;

@@ -73,16 +73,21 @@ class Voxeliser final : public PointSink {
         report_(report) {}
 
   void points(const PointChunk& c) override {
-    for (std::size_t i = 0; i < c.positions.size(); ++i) {
-      const Vec3d& p = c.positions[i];
-      if (!p.allFinite() || !inside(options_, p)) continue;
-      const Vec3f f = (p - origin_).cast<float>();
-      const Vec3d q = (f.cast<double>() - lo_) / cell_;
-      CellTable::Key key;
-      for (int a = 0; a < 3; ++a) key[static_cast<std::size_t>(a)] = static_cast<std::int32_t>(std::floor(q[a]));
-      const Vec3d centre{double(key[0]) + 0.5, double(key[1]) + 0.5, double(key[2]) + 0.5};
-      cells.offer(key, (q - centre).squaredNorm(), {f.x(), f.y(), f.z()}, c.first + i,
-                  c.normals.empty() ? Vec3f::Zero() : c.normals[i], c.colors.empty() ? Rgb8{} : c.colors[i]);
+    // In batches: keys first, their slots prefetched, then the offers.
+    constexpr std::size_t kBatch = 32;
+    std::array<Candidate, kBatch> batch;
+    for (std::size_t start = 0; start < c.positions.size(); start += kBatch) {
+      const std::size_t end = std::min(start + kBatch, c.positions.size());
+      std::size_t n = 0;
+      for (std::size_t i = start; i < end; ++i)
+        if (candidate(c.positions[i], batch[n])) batch[n++].index = c.first + i;
+      cells.reserve_for(n);
+      for (std::size_t k = 0; k < n; ++k) cells.prefetch(batch[k].key);
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = static_cast<std::size_t>(batch[k].index - c.first);
+        cells.offer(batch[k].key, batch[k].distance2, batch[k].position, batch[k].index,
+                    c.normals.empty() ? Vec3f::Zero() : c.normals[i], c.colors.empty() ? Rgb8{} : c.colors[i]);
+      }
     }
     report_(0.5 + 0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_));
   }
@@ -90,6 +95,25 @@ class Voxeliser final : public PointSink {
   CellTable cells;
 
  private:
+  struct Candidate {
+    CellTable::Key key;
+    double distance2;
+    std::array<float, 3> position;
+    std::uint64_t index;
+  };
+
+  // decimate()'s cell and distance for `p`, on the float position the whole read would store; false: not kept.
+  bool candidate(const Vec3d& p, Candidate& out) const {
+    if (!p.allFinite() || !inside(options_, p)) return false;
+    const Vec3f f = (p - origin_).cast<float>();
+    const Vec3d q = (f.cast<double>() - lo_) / cell_;
+    for (int a = 0; a < 3; ++a) out.key[static_cast<std::size_t>(a)] = static_cast<std::int32_t>(std::floor(q[a]));
+    const Vec3d centre{double(out.key[0]) + 0.5, double(out.key[1]) + 0.5, double(out.key[2]) + 0.5};
+    out.distance2 = (q - centre).squaredNorm();
+    out.position = {f.x(), f.y(), f.z()};
+    return true;
+  }
+
   const ReadOptions& options_;
   Vec3d origin_, lo_;
   double cell_;

@@ -41,9 +41,9 @@ TEST_F(CliStream, CloudOverTheBudgetIsThinnedAndTheJsonSaysSo) {
   EXPECT_GT(input["points_kept"].get<int>(), 1000);
   EXPECT_TRUE(input["thinning"]["streamed"].get<bool>());
   EXPECT_EQ(input["thinning"]["reason"],
-            "37706 points, over the 20000 budget of a 100x100 orthographic image: cells of 0.5 px");
-  // The bunny's box is about 1 x 1 x 0.77: half of the median side over 100 px.
-  EXPECT_NEAR(input["thinning"]["cell"].get<double>(), 0.005, 0.0005);
+            "37706 points, over the 20000 budget of a 100x100 orthographic image: cells of 1 px");
+  // The bunny's box is about 1 x 1 x 0.77: the median side over 100 px.
+  EXPECT_NEAR(input["thinning"]["cell"].get<double>(), 0.01, 0.001);
 }
 
 TEST_F(CliStream, InfoReportsTheThinning) {

@@ -123,7 +123,7 @@ TEST(StreamRead, CloudWithinTheResolutionBudgetIsReadAsBefore) {
   expect_same_cloud(r.cloud, read_point_cloud_from_memory(bytes, "s.ply").cloud);
 }
 
-TEST(StreamRead, CloudOverTheBudgetIsThinnedToHalfAPixel) {
+TEST(StreamRead, CloudOverTheBudgetIsThinnedToAPixel) {
   const std::string bytes = sphere_ply(20000, Layout::BinaryLE, "float", 0.0, false);
   ReadOptions options;
   options.decimate.resolution = OutputResolution{.width = 64, .height = 32, .budget_points = 10000};
@@ -132,9 +132,9 @@ TEST(StreamRead, CloudOverTheBudgetIsThinnedToHalfAPixel) {
   EXPECT_TRUE(r.decimation->streamed);
   EXPECT_NE(r.decimation->reason.find("over the 10000 budget of a 64x32 orthographic image"), std::string::npos)
       << r.decimation->reason;
-  // The robust box of the unit sphere samples is a little under 2 a side: half of 2/64 at most.
-  EXPECT_GT(r.decimation->cell, 0.014);
-  EXPECT_LT(r.decimation->cell, 0.5 * 2.02 / 64);
+  // The robust box of the unit sphere samples is a little under 2 a side: 2/64 at most.
+  EXPECT_GT(r.decimation->cell, 0.028);
+  EXPECT_LT(r.decimation->cell, 2.02 / 64);
   // The same rule on a format read whole (ascii PLY) keeps the same points.
   const std::string ascii = sphere_ply(20000, Layout::Ascii, "float", 0.0, false);
   const ReadResult whole = read_point_cloud_from_memory(ascii, "a.ply", options);
@@ -145,12 +145,13 @@ TEST(StreamRead, CloudOverTheBudgetIsThinnedToHalfAPixel) {
 }
 
 TEST(StreamRead, ResolutionCellKnownAnswers) {
-  // Orthographic: half of the median side over the larger image side.
-  EXPECT_DOUBLE_EQ(resolution_cell({.width = 1000, .height = 500}, Vec3d(4, 2, 1)), 0.5 * 2.0 / 1000);
+  // Orthographic: the median side over the larger image side (half of it with cell_pixels 0.5).
+  EXPECT_DOUBLE_EQ(resolution_cell({.width = 1000, .height = 500}, Vec3d(4, 2, 1)), 2.0 / 1000);
+  EXPECT_DOUBLE_EQ(resolution_cell({.width = 1000, .height = 500, .cell_pixels = 0.5}, Vec3d(4, 2, 1)), 1.0 / 1000);
   // Perspective, fov 60: the nearest depth R / sin 30 - R = R, a pixel 2 R tan 30 / height.
   const double r = 0.5 * std::sqrt(3.0);
   EXPECT_NEAR(resolution_cell({.height = 100, .perspective = true, .fov_deg = 60}, Vec3d(1, 1, 1)),
-              0.5 * 2.0 * r * std::tan(std::acos(-1.0) / 6) / 100, 1e-12);
+              2.0 * r * std::tan(std::acos(-1.0) / 6) / 100, 1e-12);
 }
 
 TEST(StreamRead, MalformedFilesStillFailWithTheByte) {

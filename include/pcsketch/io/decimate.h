@@ -19,9 +19,10 @@ struct OutputResolution {
   /// centre's). An --eye placed by hand has no bound on its nearest depth: leave `resolution` unset then.
   bool perspective = false;
   double fov_deg = 35;  ///< vertical field of view of the perspective view, degrees
-  /// Cell edge in pixels: half a pixel keeps every silhouette detail the image can show (bench_stream: contour
-  /// precision/recall against the full-resolution drawing).
-  double cell_pixels = 0.5;
+  /// Cell edge in pixels of resolution_cell()'s estimate, which is never larger than the true pixel (the bunny at
+  /// 1024 px: 0.86 of one). 1: 20M bunny samples keep 3.4M points whose contours match those of all 20M with
+  /// precision/recall 0.989/0.985 within 2 px; 0.5 keeps 9.9M (0.983/0.995) and triples the time (bench_stream).
+  double cell_pixels = 1.0;
   /// Thin only a file holding more than this many points; 0: 2 x width x height (2.1M at 1024 x 1024), above the
   /// 1M-point clouds drawn so far, which stay untouched.
   std::size_t budget_points = 0;
