@@ -31,7 +31,8 @@ struct OutputResolution {
 
 /// The cell of thinning to `resolution` for a cloud whose robust box (0.5 %..99.5 % of each coordinate) has sides
 /// `extent`: `cell_pixels` x the smallest pixel the view can have, the median side over the larger image side
-/// (orthographic; a view can foreshorten the box to no less than its second-largest side), at the nearest depth of
+/// (orthographic; a view foreshortens the box to about its second-largest side at most; edge-on and along the
+/// image diagonal, 1/sqrt(2) of it: docs/io.md), at the nearest depth of
 /// the default framing for perspective.
 double resolution_cell(const OutputResolution& resolution, const Vec3d& extent);
 
