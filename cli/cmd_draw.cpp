@@ -40,6 +40,7 @@ struct DrawArgs {
   ViewRequest views;
   io::ReadOptions read;
   DrawOptions options;
+  nlohmann::json read_report;  ///< input_json() of the read, for the JSON output
 };
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -127,6 +128,7 @@ void draw_one_view(const DrawArgs& args, const Prepared& prepared, const NamedCa
     DrawResult result = args.views.sheet ? draw_sheet(prepared, v.camera, *args.views.sheet, options)
                                          : draw_view(prepared, v.camera, options);
     print_warnings(global, result.warnings);
+    result.drawing.input = args.read_report;
     const auto start = Clock::now();
     std::vector<fs::path> paths;
     for (const std::string& path : args.outputs) paths.push_back(view_path(path, v.name));
@@ -186,6 +188,8 @@ void run_draw(DrawArgs& args, const CLI::App& cmd, const GlobalOptions& global) 
   validate(args.options);
   for (const NamedCamera& v : views) validate(args.options, v.camera);
   check_outputs(args, views);
+  for_image(args.read, views.front().camera);
+  check_full_resolution(args.read, args.input, point_bytes(args.options.surface, 1));
 
   DrawOptions& options = args.options;
   options.progress = make_progress(global);
@@ -196,6 +200,7 @@ void run_draw(DrawArgs& args, const CLI::App& cmd, const GlobalOptions& global) 
   io::check_scale(read.cloud, args.input);
   validate_memory(options, read.cloud.size(), args.input);
   const std::string reduction = describe_reduction(read);
+  args.read_report = input_json(read);
   timings.read = seconds_since(start);
   print_warnings(global, read.warnings);
 

@@ -119,6 +119,7 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   const ProgressFn progress = make_progress(global);
   io::ReadOptions read_options = args.read;
   read_options.progress = progress;
+  check_full_resolution(read_options, args.in_path, point_bytes(args.options.surface, 1));
   io::ReadResult read = io::read_point_cloud(args.in_path, read_options);
   io::check_scale(read.cloud, args.in_path);
   validate_memory(point_bytes(args.options.surface, read.cloud.size()), args.options.max_memory_gb,

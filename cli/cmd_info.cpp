@@ -67,6 +67,8 @@ void print_attributes(const io::ReadResult& r) {
 }
 
 void run_info(const InfoArgs& args, const GlobalOptions& global) {
+  // The neighbour lists of the spacing estimate: an index and a distance per neighbour.
+  check_full_resolution(args.read, args.path, 8.0 * static_cast<double>(args.neighbourhoods.k));
   const auto start = std::chrono::steady_clock::now();
   io::ReadResult r = io::read_point_cloud(args.path, args.read);
   const double read_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

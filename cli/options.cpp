@@ -3,6 +3,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -73,6 +75,56 @@ void add_read_options(CLI::App* cmd, io::ReadOptions& read) {
                   "Thin to at most this many points with the smallest voxel that gets there (at least 8)")
       ->check(CLI::Range(std::size_t{8}, std::numeric_limits<std::size_t>::max()))
       ->group(group);
+  // Thinning to the output's resolution is the default; the commands set the image (for_image) before reading.
+  read.decimate.resolution = io::OutputResolution{};
+  cmd->add_flag_callback(
+         "--full-resolution", [&read] { read.decimate.resolution.reset(); },
+         "Keep every point of a cloud larger than the image needs (by default one per cell of about a pixel is kept); "
+         "refused at once when the estimated memory exceeds what the machine has available")
+      ->group(group);
+}
+
+void for_image(io::ReadOptions& read, const view::CameraOptions& camera) {
+  if (!read.decimate.resolution) return;
+  // A perspective eye placed by hand may stand anywhere near the cloud: no pixel size bounds its nearest depth.
+  if (camera.projection == view::Projection::Perspective && camera.eye) {
+    read.decimate.resolution.reset();
+    return;
+  }
+  io::OutputResolution& r = *read.decimate.resolution;
+  r.width = camera.width;
+  r.height = camera.height;
+  r.perspective = camera.projection == view::Projection::Perspective;
+  r.fov_deg = camera.fov_deg;
+}
+
+double available_memory_bytes() {
+  // Tests inject a small figure; the machine's MemAvailable otherwise.
+  if (const char* given = std::getenv("PCSKETCH_MEM_AVAILABLE")) return std::strtod(given, nullptr);
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kb = 0;
+  while (meminfo >> key >> kb) {
+    if (key == "MemAvailable:") return kb * 1024.0;
+    meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  return physical_memory_bytes();
+}
+
+void check_full_resolution(const io::ReadOptions& read, const std::string& input, double bytes_per_point) {
+  if (read.decimate.resolution || read.decimate.active()) return;
+  const std::optional<std::uint64_t> count = io::points_in_header(input);
+  if (!count) return;
+  const double need = static_cast<double>(*count) * (kReadBytesPerPoint + bytes_per_point);
+  const double available = available_memory_bytes();
+  if (need <= available) return;
+  char text[240];
+  std::snprintf(text, sizeof text,
+                "%s holds %llu points, estimated to need %.3g GB (%.0f bytes a point: docs/geometry.md), over the "
+                "%.3g GB available (MemAvailable); leave out --full-resolution to thin it to the image's resolution",
+                one_line(input).c_str(), static_cast<unsigned long long>(*count), need / 1e9,
+                kReadBytesPerPoint + bytes_per_point, available / 1e9);
+  throw OptionError("--full-resolution", text);
 }
 
 std::string describe_reduction(const io::ReadResult& read) {
@@ -82,11 +134,25 @@ std::string describe_reduction(const io::ReadResult& read) {
   if (read.decimation) {
     const io::DecimateReport& d = *read.decimation;
     char text[160];
-    std::snprintf(text, sizeof text, "voxel thinning %zu -> %zu points (cell %.6g, %.3f s)", d.points_before,
-                  d.points_after, d.cell, d.seconds);
+    std::snprintf(text, sizeof text, "voxel thinning %zu -> %zu points (cell %.6g, %.3f s%s)", d.points_before,
+                  d.points_after, d.cell, d.seconds, d.streamed ? ", streamed" : "");
     out += (out.empty() ? "" : "; ") + std::string(text);
+    if (!d.reason.empty()) out += " by " + d.reason;
   }
   return out;
+}
+
+nlohmann::json input_json(const io::ReadResult& read) {
+  if (!read.decimation) return nullptr;
+  const io::DecimateReport& d = *read.decimation;
+  return {{"points_in_file", read.points_in_file},
+          {"dropped_non_finite", read.dropped_non_finite},
+          {"dropped_by_filter", read.dropped_by_filter},
+          {"points_kept", d.points_after},
+          {"thinning", {{"points_before", d.points_before},
+                        {"cell", d.cell},
+                        {"reason", d.reason},
+                        {"streamed", d.streamed}}}};
 }
 
 void add_analysis_flags(CLI::App* cmd, DrawOptions& o) {

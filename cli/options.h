@@ -15,9 +15,30 @@
 
 namespace pcsketch::cli {
 
-/// Input flags (--columns, --classes, --drop-classes, --crop, --voxel, --max-points) bound to `read`, which must
-/// outlive the parse.
+/// Input flags (--columns, --classes, --drop-classes, --crop, --voxel, --max-points, --full-resolution) bound to
+/// `read`, which must outlive the parse. Thinning to the output's resolution is on (for a 1024 x 1024 image until
+/// for_image() says otherwise).
 void add_read_options(CLI::App* cmd, io::ReadOptions& read);
+
+/// The image `read` is thinned for by default (io::OutputResolution): the size and projection of `camera`; none for a
+/// perspective eye placed by hand. Nothing when --full-resolution took the resolution rule off.
+void for_image(io::ReadOptions& read, const view::CameraOptions& camera);
+
+/// Bytes a point costs while read whole (double positions 24, normals 12, colours 3, float positions 12, rounded
+/// up: docs/geometry.md "Memory per point"), beyond what the analysis needs.
+inline constexpr double kReadBytesPerPoint = 64;
+
+/// Memory available to a new allocation: MemAvailable of /proc/meminfo (PCSKETCH_MEM_AVAILABLE, in bytes, replaces
+/// it for tests).
+double available_memory_bytes();
+
+/// With --full-resolution (no thinning at all), refuses before reading a file whose header count (PLY) times
+/// kReadBytesPerPoint + `bytes_per_point` exceeds available_memory_bytes(). @throws OptionError (exit 1).
+void check_full_resolution(const io::ReadOptions& read, const std::string& input, double bytes_per_point);
+
+/// What the read kept, for the JSON output ("input": points in the file, dropped, kept, the thinning's cell and
+/// reason); null when nothing was thinned, so that the JSON of an untouched cloud is unchanged.
+nlohmann::json input_json(const io::ReadResult& read);
 
 /// One line for --timings and info: what cropping, class filters and thinning left of the file's points.
 std::string describe_reduction(const io::ReadResult& read);

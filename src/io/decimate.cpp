@@ -69,6 +69,20 @@ double cell_for(const PointCloud& cloud, std::size_t max_points) {
 
 }  // namespace
 
+double resolution_cell(const OutputResolution& r, const Vec3d& extent) {
+  std::array<double, 3> sides{extent.x(), extent.y(), extent.z()};
+  std::sort(sides.begin(), sides.end());
+  double pixel = sides[1] / static_cast<double>(std::max({r.width, r.height, 1}));
+  if (r.perspective) {
+    // Default framing: the eye at R / sin(fov/2) from the centre, the focal length from the height; the nearest
+    // point is at least R / sin(fov/2) - R deep. R from the robust box is at most the framed box's.
+    const double half = 0.5 * r.fov_deg * 3.14159265358979323846 / 180.0;
+    const double radius = 0.5 * extent.norm();
+    pixel = 2.0 * radius * (1.0 / std::sin(half) - 1.0) * std::tan(half) / static_cast<double>(std::max(r.height, 1));
+  }
+  return r.cell_pixels * pixel;
+}
+
 DecimateReport decimate(PointCloud& cloud, const DecimateOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   if (options.voxel && !(*options.voxel > 0.0 && std::isfinite(*options.voxel)))

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "ply_types.h"
+#include "point_stream.h"
 #include "raw_cloud.h"
 #include "text_scan.h"
 
@@ -186,6 +187,8 @@ class BodyReader {
     for (std::uint64_t i = 0; i < e.count; ++i) entry(e, slots, nullptr, kSkip, unused);
   }
 
+  std::size_t position() const { return pos_; }
+
   [[noreturn]] void fail(const Element& e, const std::string& message) const {
     if (binary()) src_.fail_at_byte(pos_, "PLY: element " + quote(e.name) + ": " + message);
     src_.fail_at_line(tokens_.line(), "PLY: element " + quote(e.name) + ": " + message);
@@ -245,40 +248,123 @@ std::uint8_t to_color(double v, PlyScalar type) {
   return to_channel(type == PlyScalar::F32 || type == PlyScalar::F64 ? v * 255.0 : v);
 }
 
+const Element& vertex_element(const Source& src, const Header& h) {
+  const Element* vertex = find_element(h, "vertex");
+  if (vertex == nullptr) src.fail("PLY: no \"vertex\" element in the header");
+  if (vertex->count > 0xffffffffull) src.fail_at_line(vertex->line, "PLY: more than 2^32-1 vertices");
+  return *vertex;
+}
+
+// Where each vertex property goes. Slots: 0-2 position, 3-5 normal, 6-8 colour.
+struct VertexLayout {
+  std::array<int, 9> columns{};
+  bool has_normals = false;
+  bool has_colors = false;
+  std::vector<int> slots;  ///< per property: its slot or kSkip
+};
+
+VertexLayout vertex_layout(const Source& src, const Element& vertex) {
+  VertexLayout l;
+  l.columns = {find_property(vertex, {"x"}),
+               find_property(vertex, {"y"}),
+               find_property(vertex, {"z"}),
+               find_property(vertex, {"nx", "normal_x"}),
+               find_property(vertex, {"ny", "normal_y"}),
+               find_property(vertex, {"nz", "normal_z"}),
+               find_property(vertex, {"red", "diffuse_red"}),
+               find_property(vertex, {"green", "diffuse_green"}),
+               find_property(vertex, {"blue", "diffuse_blue"})};
+  const auto& columns = l.columns;
+  if (columns[0] == kSkip || columns[1] == kSkip || columns[2] == kSkip)
+    src.fail_at_line(vertex.line, "PLY: element \"vertex\" lacks one of the scalar properties x, y, z");
+  l.has_normals = columns[3] != kSkip && columns[4] != kSkip && columns[5] != kSkip;
+  l.has_colors = columns[6] != kSkip && columns[7] != kSkip && columns[8] != kSkip;
+  l.slots.assign(vertex.properties.size(), kSkip);
+  for (int s = 0; s < 9; ++s)
+    if (columns[s] != kSkip && (s < 3 || (s < 6 ? l.has_normals : l.has_colors))) l.slots[columns[s]] = s;
+  return l;
+}
+
+std::string format_name(const Header& h) {
+  return std::string("ply ") + (h.encoding == Encoding::Ascii                ? "ascii"
+                                : h.encoding == Encoding::BinaryLittleEndian ? "binary_little_endian"
+                                                                             : "binary_big_endian");
+}
+
+std::vector<std::string> skipped_properties(const Element& vertex, const VertexLayout& l) {
+  std::vector<std::string> out;
+  for (std::size_t j = 0; j < vertex.properties.size(); ++j)
+    if (l.slots[j] == kSkip) out.push_back(vertex.properties[j].name);
+  return out;
+}
+
+/// One vertex entry into position, normal and colour.
+void read_vertex(BodyReader& body, const Element& e, const VertexLayout& l, Vec3d& p, Vec3f* n, Rgb8* c) {
+  std::array<double, 9> v{};
+  std::vector<std::uint32_t> unused;
+  body.entry(e, l.slots, v.data(), kSkip, unused);
+  p = Vec3d(v[0], v[1], v[2]);
+  if (n != nullptr) *n = Vec3f(float(v[3]), float(v[4]), float(v[5]));
+  if (c != nullptr)
+    *c = {to_color(v[6], e.properties[l.columns[6]].type), to_color(v[7], e.properties[l.columns[7]].type),
+          to_color(v[8], e.properties[l.columns[8]].type)};
+}
+
 }  // namespace
+
+std::optional<StreamHeader> ply_stream_header(const Source& src) {
+  if (!src.bytes.starts_with("ply\n") && !src.bytes.starts_with("ply\r\n")) return std::nullopt;
+  const Header h = parse_header(src);
+  if (h.encoding == Encoding::Ascii) return std::nullopt;
+  check_counts(src, h);
+  const Element& vertex = vertex_element(src, h);
+  const VertexLayout l = vertex_layout(src, vertex);
+  return StreamHeader{vertex.count, l.has_normals, l.has_colors, format_name(h), skipped_properties(vertex, l)};
+}
+
+std::optional<std::uint64_t> ply_header_count(const Source& src) {
+  if (!src.bytes.starts_with("ply\n") && !src.bytes.starts_with("ply\r\n")) return std::nullopt;
+  const Header h = parse_header(src);
+  check_counts(src, h);
+  return vertex_element(src, h).count;
+}
+
+void stream_ply(const Source& src, std::size_t chunk_points, PointSink& sink) {
+  const Header h = parse_header(src);
+  check_counts(src, h);
+  const Element& vertex = vertex_element(src, h);
+  const VertexLayout l = vertex_layout(src, vertex);
+  BodyReader body(src, h);
+  for (const Element& e : h.elements) {
+    if (&e == &vertex) break;
+    body.skip(e);
+  }
+  chunk_points = std::max<std::size_t>(chunk_points, 1);
+  std::vector<Vec3d> positions(chunk_points);
+  std::vector<Vec3f> normals(l.has_normals ? chunk_points : 0);
+  std::vector<Rgb8> colors(l.has_colors ? chunk_points : 0);
+  std::size_t released = 0;
+  for (std::uint64_t first = 0; first < vertex.count; first += chunk_points) {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(chunk_points, vertex.count - first));
+    for (std::size_t i = 0; i < n; ++i)
+      read_vertex(body, vertex, l, positions[i], l.has_normals ? &normals[i] : nullptr,
+                  l.has_colors ? &colors[i] : nullptr);
+    sink.points({first, std::span(positions).first(n), std::span(normals).first(l.has_normals ? n : 0),
+                 std::span(colors).first(l.has_colors ? n : 0)});
+    if (src.mapped) released = release_pages(src.bytes, released, body.position());
+  }
+}
 
 RawCloud parse_ply(const Source& src, Want want) {
   const Header h = parse_header(src);
   check_counts(src, h);
-  const Element* vertex_element = find_element(h, "vertex");
-  if (vertex_element == nullptr) src.fail("PLY: no \"vertex\" element in the header");
-  const Element& vertex = *vertex_element;
-  if (vertex.count > 0xffffffffull) src.fail_at_line(vertex.line, "PLY: more than 2^32-1 vertices");
+  const Element& vertex = vertex_element(src, h);
 
-  // Slots: 0-2 position, 3-5 normal, 6-8 colour.
-  const std::array<int, 9> columns{find_property(vertex, {"x"}),
-                                   find_property(vertex, {"y"}),
-                                   find_property(vertex, {"z"}),
-                                   find_property(vertex, {"nx", "normal_x"}),
-                                   find_property(vertex, {"ny", "normal_y"}),
-                                   find_property(vertex, {"nz", "normal_z"}),
-                                   find_property(vertex, {"red", "diffuse_red"}),
-                                   find_property(vertex, {"green", "diffuse_green"}),
-                                   find_property(vertex, {"blue", "diffuse_blue"})};
-  if (columns[0] == kSkip || columns[1] == kSkip || columns[2] == kSkip)
-    src.fail_at_line(vertex.line, "PLY: element \"vertex\" lacks one of the scalar properties x, y, z");
-  const bool has_normals = columns[3] != kSkip && columns[4] != kSkip && columns[5] != kSkip;
-  const bool has_colors = columns[6] != kSkip && columns[7] != kSkip && columns[8] != kSkip;
-  std::vector<int> slots(vertex.properties.size(), kSkip);
-  for (int s = 0; s < 9; ++s)
-    if (columns[s] != kSkip && (s < 3 || (s < 6 ? has_normals : has_colors))) slots[columns[s]] = s;
-
+  const VertexLayout layout = vertex_layout(src, vertex);
+  const bool has_normals = layout.has_normals, has_colors = layout.has_colors;
   RawCloud raw;
-  raw.format = std::string("ply ") + (h.encoding == Encoding::Ascii                ? "ascii"
-                                      : h.encoding == Encoding::BinaryLittleEndian ? "binary_little_endian"
-                                                                                   : "binary_big_endian");
-  for (std::size_t j = 0; j < vertex.properties.size(); ++j)
-    if (slots[j] == kSkip) raw.other_attributes.push_back(vertex.properties[j].name);
+  raw.format = format_name(h);
+  raw.other_attributes = skipped_properties(vertex, layout);
 
   const Element* face = nullptr;
   int face_list = kSkip;
@@ -302,15 +388,9 @@ RawCloud parse_ply(const Source& src, Want want) {
       raw.positions.resize(e.count);
       if (has_normals) raw.normals.resize(e.count);
       if (has_colors) raw.colors.resize(e.count);
-      std::array<double, 9> v{};
-      for (std::uint64_t i = 0; i < e.count; ++i) {
-        body.entry(e, slots, v.data(), kSkip, polygon);
-        raw.positions[i] = Vec3d(v[0], v[1], v[2]);
-        if (has_normals) raw.normals[i] = Vec3f(float(v[3]), float(v[4]), float(v[5]));
-        if (has_colors)
-          raw.colors[i] = {to_color(v[6], e.properties[columns[6]].type), to_color(v[7], e.properties[columns[7]].type),
-                           to_color(v[8], e.properties[columns[8]].type)};
-      }
+      for (std::uint64_t i = 0; i < e.count; ++i)
+        read_vertex(body, e, layout, raw.positions[i], has_normals ? &raw.normals[i] : nullptr,
+                    has_colors ? &raw.colors[i] : nullptr);
       vertices_done = true;
     } else if (&e == face) {
       const std::vector<int> none(e.properties.size(), kSkip);

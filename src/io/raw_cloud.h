@@ -21,6 +21,7 @@ struct Source {
   const std::string& path;
   std::span<const Column> columns = {};  ///< text formats: ReadOptions::columns
   const ProgressFn* progress = nullptr;   ///< ReadOptions::progress, for readers whose parse takes long
+  bool mapped = false;                    ///< `bytes` is a file mapping whose read pages may be released
 
   [[noreturn]] void fail_at_byte(std::size_t offset, const std::string& message) const {
     throw Error(FileLoc{path, {}, offset}, message);
@@ -63,6 +64,9 @@ std::size_t collapse_duplicates(RawCloud& raw);
 inline std::uint8_t to_channel(double v) {
   return static_cast<std::uint8_t>(std::clamp(std::round(std::isfinite(v) ? v : 0.0), 0.0, 255.0));
 }
+
+/// The origin of a cloud whose bounding box is [lo, hi] (docs/io.md, "Precision"): 0 unless it lies far away.
+Vec3d choose_origin(const Vec3d& lo, const Vec3d& hi, const ReadOptions& options);
 
 /// Appends the triangles of a polygon as a fan around its first corner (nothing for fewer than 3 corners).
 void add_fan(std::span<const std::uint32_t> polygon, std::vector<std::array<std::uint32_t, 3>>& faces);

@@ -8,6 +8,7 @@
 
 #include "columns.h"
 #include "mapped_file.h"
+#include "point_stream.h"
 #include "raw_cloud.h"
 
 namespace pcsketch::io {
@@ -100,15 +101,10 @@ std::pair<Vec3d, Vec3d> bounds(const std::vector<Vec3d>& positions) {
   return {lo, hi};
 }
 
-// Recentre far-away clouds on a whole-unit origin; keep origin 0 for clouds around the world origin, where float
-// positions lose nothing worth keeping (at most 4 bits against a centred cloud).
 Vec3d choose_origin(const std::vector<Vec3d>& positions, const ReadOptions& options) {
-  if (!options.recentre || positions.empty()) return Vec3d::Zero();
+  if (positions.empty()) return Vec3d::Zero();
   const auto [lo, hi] = bounds(positions);
-  const Vec3d centre = 0.5 * (lo + hi);
-  const double extent = (hi - lo).maxCoeff();
-  if (centre.cwiseAbs().maxCoeff() <= 8.0 * extent) return Vec3d::Zero();
-  return centre.array().round().matrix();
+  return detail::choose_origin(lo, hi, options);
 }
 
 std::vector<Vec3f> relative(const std::vector<Vec3d>& positions, const Vec3d& origin, const Source& source) {
@@ -207,6 +203,27 @@ void check_normals(RawCloud& raw, ReadResult& result, const Source& source) {
   for (Vec3f& n : raw.normals) n.normalize();
 }
 
+// The thinning asked for: --voxel and --max-points, and the resolution rule for a file of more points than its
+// budget (a format read whole; binary PLY is thinned while streamed, by the same rule).
+void thin(ReadResult& result, const DecimateOptions& options) {
+  PointCloud& cloud = result.cloud;
+  DecimateOptions d = options;
+  std::string reason = d.voxel && d.max_points ? "--voxel and --max-points" : d.voxel ? "--voxel" : "--max-points";
+  if (d.resolution && result.points_in_file > d.resolution->budget() && !cloud.empty()) {
+    const std::size_t stride = std::max<std::size_t>(1, cloud.size() / detail::kSurveySample);
+    std::vector<Vec3d> sample;
+    for (std::size_t i = 0; i < cloud.size(); i += stride) sample.push_back(cloud.positions[i].cast<double>());
+    const double cell = resolution_cell(*d.resolution, detail::robust_extent(std::move(sample)));
+    if (cell > d.voxel.value_or(0.0)) {
+      d.voxel = cell;
+      reason = detail::resolution_reason(*d.resolution, result.points_in_file) + (d.max_points ? ", then --max-points" : "");
+    }
+  }
+  if (!d.active()) return;
+  result.decimation = decimate(cloud, d);
+  result.decimation->reason = reason;
+}
+
 ReadResult finish_points(RawCloud&& raw, const Source& source, const ReadOptions& options) {
   ReadResult result;
   result.points_in_file = raw.positions.size();
@@ -230,11 +247,13 @@ ReadResult finish_points(RawCloud&& raw, const Source& source, const ReadOptions
   result.format = std::move(raw.format);
   result.columns = std::move(raw.columns);
   result.other_attributes = std::move(raw.other_attributes);
-  if (options.decimate.active()) result.decimation = decimate(cloud, options.decimate);
+  thin(result, options.decimate);
   return result;
 }
 
 ReadResult read_points(const Source& source, const ReadOptions& options) {
+  if (std::optional<ReadResult> streamed = detail::read_streamed(source, options, options.stream_chunk_points))
+    return std::move(*streamed);
   const ProgressReporter report(options.progress, "read");
   report(0.0);
   ReadResult result = finish_points(choose_reader(source).parse(source, Want::Points), source, options);
@@ -275,7 +294,12 @@ void check_scale(const PointCloud& cloud, const std::string& name) {
 
 ReadResult read_point_cloud(const std::string& path, const ReadOptions& options) {
   const detail::MappedFile file(path);
-  return read_points(Source{file.bytes(), path, options.columns, &options.progress}, options);
+  return read_points(Source{file.bytes(), path, options.columns, &options.progress, true}, options);
+}
+
+std::optional<std::uint64_t> points_in_header(const std::string& path) {
+  const detail::MappedFile file(path);
+  return detail::ply_header_count(Source{file.bytes(), path});
 }
 
 ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::string& name_hint,
@@ -293,6 +317,16 @@ Mesh read_mesh_from_memory(std::string_view bytes, const std::string& name_hint,
 }
 
 namespace detail {
+// Recentre far-away clouds on a whole-unit origin; keep origin 0 for clouds around the world origin, where float
+// positions lose nothing worth keeping (at most 4 bits against a centred cloud).
+Vec3d choose_origin(const Vec3d& lo, const Vec3d& hi, const ReadOptions& options) {
+  if (!options.recentre) return Vec3d::Zero();
+  const Vec3d centre = 0.5 * (lo + hi);
+  const double extent = (hi - lo).maxCoeff();
+  if (centre.cwiseAbs().maxCoeff() <= 8.0 * extent) return Vec3d::Zero();
+  return centre.array().round().matrix();
+}
+
 void add_fan(std::span<const std::uint32_t> polygon, std::vector<std::array<std::uint32_t, 3>>& faces) {
   for (std::size_t i = 2; i < polygon.size(); ++i) faces.push_back({polygon[0], polygon[i - 1], polygon[i]});
 }

@@ -73,6 +73,7 @@ nlohmann::json to_json(const Drawing& d) {
                       {"polylines", std::move(polylines)},
                       {"regions", std::move(regions)}};
   if (!d.plotter.is_null()) j["plotter"] = d.plotter;
+  if (!d.input.is_null()) j["input"] = d.input;
   if (d.page_mm_per_pixel) j["page"] = {{"mm_per_pixel", *d.page_mm_per_pixel}};
   if (!d.annotations.empty()) j["annotations"] = annotations_json(d.annotations);
   return j;

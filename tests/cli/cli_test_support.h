@@ -37,9 +37,11 @@ class CliTest : public ::testing::Test {
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
-  CommandRun run(const std::string& args) const {
+  /// `mem_available`: bytes to report as available memory (PCSKETCH_MEM_AVAILABLE); empty: the machine's.
+  CommandRun run(const std::string& args, const std::string& mem_available = {}) const {
+    const std::string env = mem_available.empty() ? "" : "PCSKETCH_MEM_AVAILABLE=" + mem_available + " ";
     const std::string command =
-        std::string(PCSKETCH_CLI) + " " + args + " >" + path("out") + " 2>" + path("err");
+        env + std::string(PCSKETCH_CLI) + " " + args + " >" + path("out") + " 2>" + path("err");
     const int raw = std::system(command.c_str());
     CommandRun r;
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;

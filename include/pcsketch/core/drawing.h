@@ -67,6 +67,7 @@ struct Drawing {
   nlohmann::json camera;           ///< Camera::to_json()
   nlohmann::json parameters;       ///< every option used, for reproducibility
   nlohmann::json plotter;          ///< plotter paths only: pen travel before and after ordering (else null)
+  nlohmann::json input;            ///< what the read kept when it thinned the file (else null): docs/io.md
   /// Page millimetres per pixel fixed by a stated scale (page::PageOptions::scale); the writers then size the page
   /// from it instead of RenderOptions::page_width_mm. Unset: the page follows the render options.
   std::optional<double> page_mm_per_pixel;

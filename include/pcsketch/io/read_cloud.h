@@ -52,6 +52,9 @@ struct ReadOptions {
   /// Keep only the first of points with exactly equal coordinates (one warning counts the others): m copies of a
   /// point would make every neighbourhood query around it cost m, and they add nothing to the surface.
   bool collapse_duplicates = true;
+  /// Points per chunk of a streamed read (binary PLY thinned while read, docs/io.md); the kept points do not
+  /// depend on it (tests read with tiny chunks).
+  std::size_t stream_chunk_points = 1 << 16;
   /// Optional: "read" from 0 at the start to 1 when the cloud is ready (text files also as their lines are parsed);
   /// returning false stops the read (pcsketch::Cancelled).
   ProgressFn progress;
@@ -83,6 +86,10 @@ ReadResult read_point_cloud(const std::string& path, const ReadOptions& options 
 /// extension helps choose the reader and it names the input in error messages.
 ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::string& name_hint,
                                         const ReadOptions& options = {});
+
+/// The number of points a file's header declares (binary or ascii PLY), checked against the file size; nullopt for
+/// the other formats, whose count is known only once read. @throws pcsketch::Error for a malformed header.
+std::optional<std::uint64_t> points_in_header(const std::string& path);
 
 /// Largest and smallest bounding-box side a cloud may have to be drawn. Positions are float and squared distances
 /// must stay far inside float range: a cloud in 1e30 or 1e-30 units (or one stray point at 1e30) is refused with a

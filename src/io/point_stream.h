@@ -1,0 +1,66 @@
+#pragma once
+// Streaming readers: a format hands its points over in chunks, in file order, without building a RawCloud; the
+// consumer (src/io/stream_read.cpp) keeps what it needs. Memory then grows with what is kept, not with the file.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "raw_cloud.h"
+
+namespace pcsketch::io::detail {
+
+/// What the header says, before any point is handed over.
+struct StreamHeader {
+  std::uint64_t count = 0;  ///< points the file holds (checked against the file size)
+  bool has_normals = false;
+  bool has_colors = false;
+  std::string format;
+  std::vector<std::string> other_attributes;
+};
+
+/// One chunk of consecutive points; `normals` and `colors` are empty when the file has none.
+struct PointChunk {
+  std::uint64_t first = 0;  ///< file index of positions[0]
+  std::span<const Vec3d> positions;
+  std::span<const Vec3f> normals;
+  std::span<const Rgb8> colors;
+};
+
+/// Receives the chunks in file order; throwing stops the stream.
+class PointSink {
+ public:
+  virtual ~PointSink() = default;
+  virtual void points(const PointChunk& chunk) = 0;
+};
+
+/// Releases the pages of `bytes` wholly inside [from, to) (a mapped file read front to back); returns the offset up
+/// to which pages are released, the `from` of the next call.
+std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t to);
+
+/// At most this many positions (every n-th point) are sampled for the robust box of the resolution rule.
+inline constexpr std::uint64_t kSurveySample = 1u << 18;
+
+/// Sides of the box from 0.5 % to 99.5 % of each coordinate of `sample` (far outliers do not widen it).
+Vec3d robust_extent(std::vector<Vec3d> sample);
+
+/// Why the resolution rule thinned a file of `count` points ("2097152 points budget for a 1024x1024 image, …").
+std::string resolution_reason(const OutputResolution& resolution, std::uint64_t count);
+
+/// Streaming readers (binary PLY for now; PCD binary, LAS and XYZ are read whole). The header of a file the reader
+/// can stream, or nullopt (another format or layout); throws the reader's error for a malformed header or a count
+/// the file cannot hold. stream_ply() then hands every point to `sink`, `chunk_points` at a time; when
+/// `source.mapped`, the pages already read are released (madvise) so that the mapping does not stay resident.
+std::optional<StreamHeader> ply_stream_header(const Source& source);
+std::optional<std::uint64_t> ply_header_count(const Source& source);  ///< any PLY layout; nullopt: not PLY
+void stream_ply(const Source& source, std::size_t chunk_points, PointSink& sink);
+
+/// The whole streamed read: nullopt when the file is not streamable or `options` ask for no thinning this file
+/// needs (then the in-memory read runs, and normal clouds read exactly as before); else the thinned cloud.
+/// `chunk_points`: points per chunk (tests pass tiny ones; the result does not depend on it).
+std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions& options, std::size_t chunk_points);
+
+}  // namespace pcsketch::io::detail

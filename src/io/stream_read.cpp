@@ -1,0 +1,253 @@
+// Streamed read with voxel thinning: two passes over the mapped file, never a whole RawCloud. The first finds the
+// bounding box (and the robust box for the resolution rule), the second keeps per occupied cell the point nearest
+// its centre in a hash map. The rule, the grid and the tie-breaks are decimate()'s, computed on the same float
+// positions, so the kept points are exactly those of the in-memory read followed by decimate().
+
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <chrono>
+#include <cmath>
+#include <tuple>
+
+#include "cell_table.h"
+#include "columns.h"
+#include "point_stream.h"
+
+namespace pcsketch::io::detail {
+namespace {
+
+bool inside(const ReadOptions& options, const Vec3d& p) {
+  return !options.crop ||
+         ((p.array() >= options.crop->min.array()).all() && (p.array() <= options.crop->max.array()).all());
+}
+
+/// Pass 1: counts, bounding box, normal statistics and a sample of positions.
+class Survey final : public PointSink {
+ public:
+  Survey(const ReadOptions& options, std::uint64_t count, const ProgressReporter& report)
+      : options_(options), count_(count), stride_(std::max<std::uint64_t>(1, count / kSurveySample)), report_(report) {}
+
+  void points(const PointChunk& c) override {
+    for (std::size_t i = 0; i < c.positions.size(); ++i) {
+      const Vec3d& p = c.positions[i];
+      if (!p.allFinite()) {
+        ++non_finite;
+        continue;
+      }
+      if (!inside(options_, p)) {
+        ++cropped;
+        continue;
+      }
+      lo = kept == 0 ? p : lo.cwiseMin(p);
+      hi = kept == 0 ? p : hi.cwiseMax(p);
+      ++kept;
+      if (!c.normals.empty()) {
+        const Vec3f& n = c.normals[i];
+        bad_normals += !(n.allFinite() && n.norm() > 0.f);
+        unit_normals += std::abs(n.norm() - 1.f) <= kUnitTolerance;
+      }
+      if ((c.first + i) % stride_ == 0) sample.push_back(p);
+    }
+    report_(0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_));
+  }
+
+  std::uint64_t non_finite = 0, cropped = 0, kept = 0, bad_normals = 0, unit_normals = 0;
+  Vec3d lo = Vec3d::Zero(), hi = Vec3d::Zero();
+  std::vector<Vec3d> sample;
+
+ private:
+  const ReadOptions& options_;
+  std::uint64_t count_, stride_;
+  const ProgressReporter& report_;
+};
+
+/// Pass 2: per occupied cell, the candidate decimate() would keep.
+class Voxeliser final : public PointSink {
+ public:
+  Voxeliser(const ReadOptions& options, const Vec3d& origin, const Vec3d& lo, double cell, std::uint64_t count,
+            bool normals, bool colors, const ProgressReporter& report)
+      : cells(normals, colors), options_(options), origin_(origin), lo_(lo), cell_(cell), count_(count),
+        report_(report) {}
+
+  void points(const PointChunk& c) override {
+    // In batches: keys first, their slots prefetched, then the offers.
+    constexpr std::size_t kBatch = 32;
+    std::array<Candidate, kBatch> batch;
+    for (std::size_t start = 0; start < c.positions.size(); start += kBatch) {
+      const std::size_t end = std::min(start + kBatch, c.positions.size());
+      std::size_t n = 0;
+      for (std::size_t i = start; i < end; ++i)
+        if (candidate(c.positions[i], batch[n])) batch[n++].index = c.first + i;
+      cells.reserve_for(n);
+      for (std::size_t k = 0; k < n; ++k) cells.prefetch(batch[k].key);
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = static_cast<std::size_t>(batch[k].index - c.first);
+        cells.offer(batch[k].key, batch[k].distance2, batch[k].position, batch[k].index,
+                    c.normals.empty() ? Vec3f::Zero() : c.normals[i], c.colors.empty() ? Rgb8{} : c.colors[i]);
+      }
+    }
+    report_(0.5 + 0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_));
+  }
+
+  CellTable cells;
+
+ private:
+  struct Candidate {
+    CellTable::Key key;
+    double distance2;
+    std::array<float, 3> position;
+    std::uint64_t index;
+  };
+
+  // decimate()'s cell and distance for `p`, on the float position the whole read would store; false: not kept.
+  bool candidate(const Vec3d& p, Candidate& out) const {
+    if (!p.allFinite() || !inside(options_, p)) return false;
+    const Vec3f f = (p - origin_).cast<float>();
+    const Vec3d q = (f.cast<double>() - lo_) / cell_;
+    for (int a = 0; a < 3; ++a) out.key[static_cast<std::size_t>(a)] = static_cast<std::int32_t>(std::floor(q[a]));
+    const Vec3d centre{double(out.key[0]) + 0.5, double(out.key[1]) + 0.5, double(out.key[2]) + 0.5};
+    out.distance2 = (q - centre).squaredNorm();
+    out.position = {f.x(), f.y(), f.z()};
+    return true;
+  }
+
+  const ReadOptions& options_;
+  Vec3d origin_, lo_;
+  double cell_;
+  std::uint64_t count_;
+  const ProgressReporter& report_;
+};
+
+// check_normals() of the in-memory read, from the survey's counts.
+bool normals_usable(const Survey& s, ReadResult& result, const Source& source) {
+  if (s.bad_normals > 0) {
+    result.warnings.push_back(source.path + ": " + std::to_string(s.bad_normals) +
+                              " normals are zero or not finite; normals ignored");
+    return false;
+  }
+  const double unit = static_cast<double>(s.unit_normals) / static_cast<double>(s.kept);
+  if (unit < kUnitShare) {
+    result.warnings.push_back(source.path + ": the file's normals are not unit vectors (only " +
+                              std::to_string(static_cast<int>(unit * 100.0)) +
+                              "% are); they are recomputed from the points");
+    return false;
+  }
+  return true;
+}
+
+void check_survey(const Survey& s, const StreamHeader& header, ReadResult& result, const Source& source) {
+  if (header.count == 0) source.fail(header.format + ": the file holds no points");
+  if (s.non_finite == header.count)
+    source.fail(header.format + ": all " + std::to_string(header.count) +
+                " points have a NaN or infinite coordinate");
+  if (s.non_finite > 0)
+    result.warnings.push_back(source.path + ": dropped " + std::to_string(s.non_finite) + " of " +
+                              std::to_string(header.count) + " points with a NaN or infinite coordinate");
+  if (s.kept == 0)
+    source.fail(header.format + ": none of the " + std::to_string(header.count - s.non_finite) +
+                " points is left by the crop box");
+}
+
+}  // namespace
+
+Vec3d robust_extent(std::vector<Vec3d> sample) {
+  Vec3d extent = Vec3d::Zero();
+  if (sample.empty()) return extent;
+  const std::size_t lo = sample.size() / 200, hi = sample.size() - 1 - sample.size() / 200;
+  std::vector<double> axis(sample.size());
+  for (int a = 0; a < 3; ++a) {
+    for (std::size_t i = 0; i < sample.size(); ++i) axis[i] = sample[i][a];
+    std::nth_element(axis.begin(), axis.begin() + static_cast<std::ptrdiff_t>(lo), axis.end());
+    const double low = axis[lo];
+    std::nth_element(axis.begin(), axis.begin() + static_cast<std::ptrdiff_t>(hi), axis.end());
+    extent[a] = axis[hi] - low;
+  }
+  return extent;
+}
+
+std::string resolution_reason(const OutputResolution& r, std::uint64_t count) {
+  char text[200];
+  std::snprintf(text, sizeof text, "%llu points, over the %zu budget of a %dx%d %s image: cells of %.3g px",
+                static_cast<unsigned long long>(count), r.budget(), r.width, r.height,
+                r.perspective ? "perspective" : "orthographic", r.cell_pixels);
+  return text;
+}
+
+std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t to) {
+  static const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const auto base = reinterpret_cast<std::uintptr_t>(bytes.data());
+  const std::uintptr_t begin = (base + from + page - 1) / page * page, end = (base + to) / page * page;
+  if (end <= begin) return from;
+  // The mapping is private and read-only: dropped pages are read again from the file if touched.
+  ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
+  return end - base;
+}
+
+std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions& options, std::size_t chunk_points) {
+  const DecimateOptions& d = options.decimate;
+  if (!options.classes.empty() || !options.drop_classes.empty()) return std::nullopt;
+  const std::optional<StreamHeader> header = ply_stream_header(source);
+  if (!header) return std::nullopt;
+  const bool by_resolution = d.resolution && header->count > d.resolution->budget();
+  if (!d.voxel && !by_resolution) return std::nullopt;
+
+  const auto start = std::chrono::steady_clock::now();
+  const ProgressReporter report(options.progress, "read");
+  report(0.0);
+  Survey survey(options, header->count, report);
+  stream_ply(source, chunk_points, survey);
+  ReadResult result;
+  result.points_in_file = header->count;
+  result.dropped_non_finite = survey.non_finite;
+  result.dropped_by_filter = survey.cropped;
+  check_survey(survey, *header, result, source);
+
+  PointCloud& cloud = result.cloud;
+  cloud.origin = choose_origin(survey.lo, survey.hi, options);
+  // decimate()'s grid is anchored at the float box, and rounding to float keeps the order: the float box is the
+  // double box rounded.
+  const Vec3f lo = (survey.lo - cloud.origin).cast<float>(), hi = (survey.hi - cloud.origin).cast<float>();
+  if (!lo.allFinite() || !hi.allFinite())
+    source.fail("the points lie " + number((survey.hi - survey.lo).cwiseAbs().maxCoeff()) +
+                " units apart, beyond float range");
+  DecimateReport thinning;
+  thinning.streamed = true;
+  thinning.points_before = survey.kept;
+  thinning.cell = d.voxel.value_or(0.0);
+  thinning.reason = d.voxel ? "--voxel" : "";
+  if (by_resolution) {
+    const double cell = resolution_cell(*d.resolution, robust_extent(survey.sample));
+    if (cell > thinning.cell) {
+      thinning.cell = cell;
+      thinning.reason = resolution_reason(*d.resolution, header->count);
+    }
+  }
+  // A box without extent (all points on a line or at one place): a cell far below any spacing.
+  if (!(thinning.cell > 0.0)) thinning.cell = std::max((survey.hi - survey.lo).maxCoeff() * 1e-7, 1e-30);
+  // A grid of more than 2^30 cells a side (a --voxel far below the box): decimate() in memory has 64-bit cells.
+  if (((survey.hi - survey.lo) / thinning.cell).maxCoeff() >= CellTable::kMaxIndex - 2) return std::nullopt;
+  const bool normals = header->has_normals && options.keep_normals && normals_usable(survey, result, source);
+  Voxeliser voxels(options, cloud.origin, lo.cast<double>(), thinning.cell, header->count, normals,
+                   header->has_colors && options.keep_colors, report);
+  stream_ply(source, chunk_points, voxels);
+  voxels.cells.take(cloud.positions, cloud.normals, cloud.colors);
+  for (Vec3f& n : cloud.normals) n.normalize();
+  thinning.points_after = cloud.size();
+  thinning.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.format = header->format;
+  result.other_attributes = header->other_attributes;
+  result.decimation = thinning;
+  if (d.max_points && cloud.size() > *d.max_points) {
+    const DecimateReport more = decimate(cloud, {.max_points = d.max_points});
+    result.decimation->points_after = more.points_after;
+    result.decimation->cell = more.cell;
+    result.decimation->reason += ", then --max-points";
+  }
+  report(1.0);
+  return result;
+}
+
+}  // namespace pcsketch::io::detail
