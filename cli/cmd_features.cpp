@@ -125,6 +125,11 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   validate_memory(point_bytes(args.options.surface, read.cloud.size()), args.options.max_memory_gb,
                   args.in_path + ": " + std::to_string(read.cloud.size()) + " points (--neighbours " +
                       std::to_string(args.options.surface.neighbourhood.k) + ")");
+  // Per-point output of fewer points than the file holds must never pass unnoticed.
+  if (read.decimation && !read.decimation->reason.starts_with("--"))
+    read.warnings.push_back(std::to_string(read.points_in_file) + " points in the file, " +
+                            std::to_string(read.cloud.size()) + " written: " + describe_reduction(read) +
+                            "; --full-resolution keeps every point");
   print_warnings(global, read.warnings);
   PointCloud& cloud = read.cloud;
   differential::SurfaceOptions surface_options = args.options.surface;
