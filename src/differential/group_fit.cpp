@@ -101,7 +101,10 @@ class GroupNeighbours {
     float largest = 0;
     for (const std::uint64_t c : candidates_) largest = std::max(largest, squared(c));
     const float per_ring = largest > 0 ? 255.f / largest : 0.f;
-    const auto ring = [&](std::uint64_t c) { return std::min(255, static_cast<int>(squared(c) * per_ring)); };
+    const auto ring = [&](std::uint64_t c) {
+      const float r = squared(c) * per_ring;
+      return r >= 0 ? std::min(255, static_cast<int>(r)) : 0;  // NaN (a point at NaN): ring 0, never converted
+    };
     std::array<std::uint32_t, 256> count{};
     for (const std::uint64_t c : candidates_) ++count[static_cast<std::size_t>(ring(c))];
     int last = 0;
