@@ -319,7 +319,8 @@ std::optional<StreamHeader> ply_stream_header(const Source& src) {
   check_counts(src, h);
   const Element& vertex = vertex_element(src, h);
   const VertexLayout l = vertex_layout(src, vertex);
-  return StreamHeader{vertex.count, l.has_normals, l.has_colors, format_name(h), skipped_properties(vertex, l)};
+  return StreamHeader{vertex.count, l.has_normals, l.has_colors, format_name(h), skipped_properties(vertex, l),
+                      stream_ply};
 }
 
 std::optional<std::uint64_t> ply_header_count(const Source& src) {

@@ -65,6 +65,19 @@ inline std::uint8_t to_channel(double v) {
   return static_cast<std::uint8_t>(std::clamp(std::round(std::isfinite(v) ? v : 0.0), 0.0, 255.0));
 }
 
+/// What left no point, for the message "none of the N points is left by the …".
+inline const char* filters_named(bool by_class, bool crop) {
+  return !crop ? "class filters" : by_class ? "class filters and the crop box" : "crop box";
+}
+
+/// --classes and --drop-classes: whether a point of class `c` is kept.
+inline bool class_kept(const ReadOptions& options, int c) {
+  const auto listed = [c](const std::vector<int>& classes) {
+    return std::find(classes.begin(), classes.end(), c) != classes.end();
+  };
+  return (options.classes.empty() || listed(options.classes)) && !listed(options.drop_classes);
+}
+
 /// The origin of a cloud whose bounding box is [lo, hi] (docs/io.md, "Precision"): 0 unless it lies far away.
 Vec3d choose_origin(const Vec3d& lo, const Vec3d& hi, const ReadOptions& options);
 
