@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "pcsketch/core/error.h"
+#include "pcsketch/core/point_cloud.h"
 
 namespace pcsketch::test {
 
@@ -131,6 +132,20 @@ inline std::string make_ply(const std::vector<PlyElem>& elements, Layout layout,
     }
   }
   return out;
+}
+
+/// Two clouds alike to the bit: origin, positions, normals, colours and every attribute (streamed against whole reads).
+inline void expect_same_cloud(const PointCloud& a, const PointCloud& b) {
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(a.origin, b.origin);
+  for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a.positions[i], b.positions[i]) << i;
+  EXPECT_EQ(a.normals, b.normals);
+  EXPECT_EQ(a.colors, b.colors);
+  ASSERT_EQ(a.attributes.size(), b.attributes.size());
+  for (std::size_t k = 0; k < a.attributes.size(); ++k) {
+    EXPECT_EQ(a.attributes[k].name, b.attributes[k].name);
+    EXPECT_EQ(a.attributes[k].values, b.attributes[k].values) << a.attributes[k].name;
+  }
 }
 
 }  // namespace pcsketch::test

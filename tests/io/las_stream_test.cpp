@@ -17,6 +17,7 @@ namespace {
 
 using test::LasFile;
 using test::LasPoint;
+using test::expect_same_cloud;
 
 // `n` points of a terrain tile at UTM offsets, one per metre of a jittered grid (no two alike, so that the whole
 // read's duplicate collapse has nothing to do), classes 2, 6 and 7, intensities and return numbers varying.
@@ -37,19 +38,6 @@ LasFile terrain(std::size_t n, unsigned minor, unsigned format, std::uint16_t co
     f.points.push_back(p);
   }
   return f;
-}
-
-void expect_same_cloud(const PointCloud& a, const PointCloud& b) {
-  ASSERT_EQ(a.size(), b.size());
-  EXPECT_EQ(a.origin, b.origin);
-  for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a.positions[i], b.positions[i]) << i;
-  EXPECT_EQ(a.normals, b.normals);
-  EXPECT_EQ(a.colors, b.colors);
-  ASSERT_EQ(a.attributes.size(), b.attributes.size());
-  for (std::size_t k = 0; k < a.attributes.size(); ++k) {
-    EXPECT_EQ(a.attributes[k].name, b.attributes[k].name);
-    EXPECT_EQ(a.attributes[k].values, b.attributes[k].values) << a.attributes[k].name;
-  }
 }
 
 // The reference: the whole cloud read (filters included), then thinned in memory.
