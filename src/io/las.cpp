@@ -283,7 +283,8 @@ void las_read_kept(const Source& src, std::span<const std::uint64_t> kept, std::
     attributes.add(layout, r);
     if (colors && layout.rgb >= 0) cloud.colors.push_back(to_rgb8(rgb16(layout, r), colour_max));
     // The kept records are visited in file order: their pages are released behind the reading as in the passes.
-    if (src.mapped && k % 4096 == 4095) released = release_pages(src.bytes, released, static_cast<std::size_t>(r.data() - src.bytes.data()));
+    if (src.mapped && k % 4096 == 4095)
+      released = release_pages(src.bytes, released, static_cast<std::size_t>(r.data() - src.bytes.data()));
   }
   cloud.attributes = attributes.take();
 }

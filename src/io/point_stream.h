@@ -2,6 +2,7 @@
 // Streaming readers: a format hands its points over in chunks, in file order, without building a RawCloud; the
 // consumer (src/io/stream_read.cpp) keeps what it needs. Memory then grows with what is kept, not with the file.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -54,6 +55,29 @@ class PointSink {
 /// to which pages are released, the `from` of the next call.
 std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t to);
 
+/// The chunk loop of the readers whose chunks carry positions, normals and colours (PLY, PCD):
+/// `read(index, position, normal or nullptr, colour or nullptr)` decodes the points in file order; `end_byte(n)` is
+/// the offset where the first n points end, up to which pages are released after each chunk.
+template <class Read, class EndByte>
+void stream_chunks(const Source& src, std::uint64_t count, std::size_t chunk_points, bool has_normals, bool has_colors,
+                   PointSink& sink, Read&& read, EndByte&& end_byte) {
+  chunk_points = std::max<std::size_t>(chunk_points, 1);
+  std::vector<Vec3d> positions(chunk_points);
+  std::vector<Vec3f> normals(has_normals ? chunk_points : 0);
+  std::vector<Rgb8> colors(has_colors ? chunk_points : 0);
+  std::size_t released = 0;
+  for (std::uint64_t first = 0; first < count; first += chunk_points) {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(chunk_points, count - first));
+    for (std::size_t i = 0; i < n; ++i)
+      read(first + i, positions[i], has_normals ? &normals[i] : nullptr, has_colors ? &colors[i] : nullptr);
+    sink.points({.first = first,
+                 .positions = std::span(positions).first(n),
+                 .normals = std::span(normals).first(has_normals ? n : 0),
+                 .colors = std::span(colors).first(has_colors ? n : 0)});
+    if (src.mapped) released = release_pages(src.bytes, released, end_byte(first + n));
+  }
+}
+
 /// At most this many positions (every n-th point) are sampled for the robust box of the resolution rule.
 inline constexpr std::uint64_t kSurveySample = 1u << 18;
 
@@ -63,16 +87,18 @@ Vec3d robust_extent(std::vector<Vec3d> sample);
 /// Why the resolution rule thinned a file of `count` points ("2097152 points budget for a 1024x1024 image, …").
 std::string resolution_reason(const OutputResolution& resolution, std::uint64_t count);
 
-/// Streaming readers (binary PLY and LAS; PCD, XYZ and the text formats are read whole). The header of a file the
-/// reader can stream, or nullopt (another format or layout); throws the reader's error for a malformed header or a
-/// count the file cannot hold. stream_ply() / stream_las() then hand every point to `sink`, `chunk_points` at a
-/// time; when `source.mapped`, the pages already read are released (madvise) so that the mapping does not stay
-/// resident. las_read_kept() is LAS's StreamHeader::read_kept.
+/// Streaming readers (binary PLY, LAS and binary PCD; compressed or ascii PCD, XYZ and the text formats are read
+/// whole). The header of a file the reader can stream, or nullopt (another format or layout); throws the reader's
+/// error for a malformed header or a count the file cannot hold. stream_ply() / stream_las() / stream_pcd() then hand
+/// every point to `sink`, `chunk_points` at a time; when `source.mapped`, the pages already read are released
+/// (madvise) so that the mapping does not stay resident. las_read_kept() is LAS's StreamHeader::read_kept.
 std::optional<StreamHeader> ply_stream_header(const Source& source);
 std::optional<std::uint64_t> ply_header_count(const Source& source);  ///< any PLY layout; nullopt: not PLY
 void stream_ply(const Source& source, std::size_t chunk_points, PointSink& sink);
 std::optional<StreamHeader> las_stream_header(const Source& source);
 void stream_las(const Source& source, std::size_t chunk_points, PointSink& sink);
+std::optional<StreamHeader> pcd_stream_header(const Source& source);
+void stream_pcd(const Source& source, std::size_t chunk_points, PointSink& sink);
 void las_read_kept(const Source& source, std::span<const std::uint64_t> kept, std::uint16_t colour_max, bool colors,
                    PointCloud& cloud);
 

@@ -56,6 +56,9 @@ RawCloud parse_off(const Source& source, Want want);
 RawCloud parse_obj(const Source& source, Want want);
 RawCloud parse_las(const Source& source, Want want);
 
+/// PCD's magic: '#' comment lines, then a VERSION or FIELDS line.
+bool sniff_pcd(std::string_view head);
+
 /// Removes every exact copy of an earlier point (keeping the first, with its normal and colour), in expected linear
 /// time; returns the number removed. Positions must be finite.
 std::size_t collapse_duplicates(RawCloud& raw);

@@ -30,16 +30,6 @@ bool sniff_off(std::string_view head) {
   return i == head.size() || std::isspace(static_cast<unsigned char>(head[i]));
 }
 
-// PCD: '#' comment lines, then a VERSION or FIELDS line.
-bool sniff_pcd(std::string_view head) {
-  while (head.starts_with("#")) {
-    const std::size_t eol = head.find('\n');
-    if (eol == std::string_view::npos) return false;
-    head.remove_prefix(eol + 1);
-  }
-  return head.starts_with("VERSION") || head.starts_with("FIELDS");
-}
-
 struct Reader {
   std::string_view name;
   std::array<std::string_view, 5> extensions;  ///< lower case, with the dot; unused entries empty
@@ -53,7 +43,7 @@ constexpr std::array kReaders{
     Reader{"PLY", {".ply"}, sniff_ply, detail::parse_ply, true},
     Reader{"LAS", {".las", ".laz"}, sniff_las, detail::parse_las, false},
     Reader{"OFF", {".off"}, sniff_off, detail::parse_off, true},
-    Reader{"PCD", {".pcd"}, sniff_pcd, detail::parse_pcd, false},
+    Reader{"PCD", {".pcd"}, detail::sniff_pcd, detail::parse_pcd, false},
     Reader{"OBJ", {".obj"}, nullptr, detail::parse_obj, true},
     Reader{"XYZ", {".xyz", ".pts", ".txt", ".csv", ".asc"}, nullptr, detail::parse_xyz, false},
 };

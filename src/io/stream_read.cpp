@@ -1,7 +1,8 @@
-// Streamed read with voxel thinning (binary PLY, LAS): two passes over the mapped file, never a whole RawCloud. The
-// first finds the bounding box (and the robust box for the resolution rule), the second keeps per occupied cell the
-// point nearest its centre in a hash map. The rule, the grid and the tie-breaks are decimate()'s, computed on the
-// same float positions, so the kept points are exactly those of the in-memory read followed by decimate().
+// Streamed read with voxel thinning (binary PLY, LAS, binary PCD): two passes over the mapped file, never a whole
+// RawCloud. The first finds the bounding box (and the robust box for the resolution rule), the second keeps per
+// occupied cell the point nearest its centre in a hash map. The rule, the grid and the tie-breaks are decimate()'s,
+// computed on the same float positions, so the kept points are exactly those of the in-memory read followed by
+// decimate().
 
 #include <sys/mman.h>
 #include <unistd.h>
@@ -218,6 +219,7 @@ std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions&
   // Each streaming reader recognises its own magic; another format or layout is read whole.
   std::optional<StreamHeader> header = ply_stream_header(source);
   if (!header) header = las_stream_header(source);
+  if (!header) header = pcd_stream_header(source);
   if (!header) return std::nullopt;
   // Class filters on a file without classes: the whole read gives its error.
   if ((!options.classes.empty() || !options.drop_classes.empty()) && !header->has_classes) return std::nullopt;

@@ -148,4 +148,17 @@ inline void expect_same_cloud(const PointCloud& a, const PointCloud& b) {
   }
 }
 
+/// Each of `inputs`, read as `name` by `read(bytes, name, thinned)`, fails with one message naming the file and a
+/// place ("name (byte " or "name:"), the same whether `thinned` (the streamed read) or not (the whole read).
+template <class Read>
+void expect_same_errors(const std::vector<std::string>& inputs, const std::string& name, Read&& read) {
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    SCOPED_TRACE(i);
+    const std::string whole = error_of([&] { read(inputs[i], name, false); });
+    EXPECT_TRUE(whole.find(name + " (byte ") != std::string::npos || whole.find(name + ":") != std::string::npos)
+        << whole;
+    EXPECT_EQ(error_of([&] { read(inputs[i], name, true); }), whole);
+  }
+}
+
 }  // namespace pcsketch::test
