@@ -307,6 +307,13 @@ std::optional<StreamHeader> pcd_stream_header(const Source& src) {
                       .stream = stream_pcd};
 }
 
+std::optional<std::uint64_t> pcd_header_count(const Source& src) {
+  if (!sniff_pcd(src.bytes)) return std::nullopt;
+  PcdHeader h;
+  read_header(src, h);
+  return h.points;
+}
+
 void stream_pcd(const Source& src, std::size_t chunk_points, PointSink& sink) {
   PcdHeader h;
   read_header(src, h);

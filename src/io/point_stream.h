@@ -99,6 +99,7 @@ std::optional<StreamHeader> las_stream_header(const Source& source);
 void stream_las(const Source& source, std::size_t chunk_points, PointSink& sink);
 std::optional<StreamHeader> pcd_stream_header(const Source& source);
 void stream_pcd(const Source& source, std::size_t chunk_points, PointSink& sink);
+std::optional<std::uint64_t> pcd_header_count(const Source& source);  ///< any PCD layout; nullopt: not PCD
 void las_read_kept(const Source& source, std::span<const std::uint64_t> kept, std::uint16_t colour_max, bool colors,
                    PointCloud& cloud);
 

@@ -283,6 +283,7 @@ std::optional<std::uint64_t> points_in_header(const std::string& path) {
   const detail::MappedFile file(path);
   const Source source{file.bytes(), path};
   if (const std::optional<detail::StreamHeader> las = detail::las_stream_header(source)) return las->count;
+  if (const std::optional<std::uint64_t> pcd = detail::pcd_header_count(source)) return pcd;
   return detail::ply_header_count(source);
 }
 

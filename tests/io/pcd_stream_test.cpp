@@ -114,6 +114,8 @@ TEST(PcdStream, MappedFileGivesTheSamePoints) {
   options.decimate.voxel = 0.05;
   options.stream_chunk_points = 1000;  // pages released between chunks
   expect_same_cloud(read_point_cloud(path, options).cloud, read_point_cloud_from_memory(bytes, "s.pcd", options).cloud);
+  EXPECT_EQ(points_in_header(path), 20000u);  // --full-resolution's early memory check
+  EXPECT_THROW(points_in_header(dir.write("cut.pcd", bytes.substr(0, bytes.size() - 1))), Error);
 }
 
 }  // namespace
