@@ -91,6 +91,10 @@ TEST(PcdStream, BudgetAndOtherLayouts) {
   ASSERT_TRUE(text.decimation.has_value());
   EXPECT_FALSE(text.decimation->streamed);
   EXPECT_EQ(text.cloud.size(), 2u);
+  // Class filters on a streamable file without classes: the whole read's error, not a silently empty filter.
+  const std::string message = test::error_of(
+      [&] { read_point_cloud_from_memory(bytes, "s.pcd", {.classes = {2}, .decimate = {.voxel = 0.1}}); });
+  EXPECT_NE(message.find("no classification to keep or drop classes by"), std::string::npos) << message;
 }
 
 TEST(PcdStream, MalformedHeadersFailAsInTheWholeRead) {
