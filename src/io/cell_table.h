@@ -51,8 +51,10 @@ class CellTable {
 
   std::size_t size() const { return size_; }
 
-  /// The representatives in file order: positions, and normals / colours when the table keeps them.
-  void take(std::vector<Vec3f>& positions, std::vector<Vec3f>& normals, std::vector<Rgb8>& colors) const {
+  /// The representatives in file order: positions, and normals / colours when the table keeps them; returns their
+  /// file indices (ascending), for the formats that read more of the kept points back from their records.
+  std::vector<std::uint64_t> take(std::vector<Vec3f>& positions, std::vector<Vec3f>& normals,
+                                  std::vector<Rgb8>& colors) const {
     // (file index, slot) pairs sort without chasing the table.
     std::vector<std::pair<std::uint64_t, std::uint32_t>> order;
     order.reserve(size_);
@@ -60,7 +62,8 @@ class CellTable {
       if (entries_[s].index != kEmpty) order.emplace_back(entries_[s].index, static_cast<std::uint32_t>(s));
     std::sort(order.begin(), order.end());
     std::vector<std::uint32_t> used(order.size());
-    for (std::size_t i = 0; i < order.size(); ++i) used[i] = order[i].second;
+    std::vector<std::uint64_t> indices(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) std::tie(indices[i], used[i]) = order[i];
     order = {};
     positions.reserve(used.size());
     for (const std::uint32_t s : used) positions.emplace_back(entries_[s].position[0], entries_[s].position[1],
@@ -69,6 +72,7 @@ class CellTable {
       for (const std::uint32_t s : used) normals.push_back(normals_of_[s]);
     if (colors_)
       for (const std::uint32_t s : used) colors.push_back(colors_of_[s]);
+    return indices;
   }
 
  private:

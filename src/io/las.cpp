@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "point_stream.h"
 #include "raw_cloud.h"
 
 namespace pcsketch::io::detail {
@@ -141,14 +142,68 @@ Header read_header(const Source& src) {
   return h;
 }
 
-void list_unkept(RawCloud& raw, const PointLayout& layout, std::size_t extra_bytes) {
-  for (const char* name : {"number_of_returns", "scan_angle", "user_data", "point_source_id"})
-    raw.other_attributes.push_back(name);
-  if (layout.gps_time) raw.other_attributes.push_back("gps_time");
-  if (layout.nir) raw.other_attributes.push_back("nir");
-  if (layout.wave_packets) raw.other_attributes.push_back("wave_packets");
-  if (extra_bytes > 0) raw.other_attributes.push_back("extra bytes (" + std::to_string(extra_bytes) + " per point)");
+std::vector<std::string> unkept(const PointLayout& layout, std::size_t extra_bytes) {
+  std::vector<std::string> names{"number_of_returns", "scan_angle", "user_data", "point_source_id"};
+  if (layout.gps_time) names.push_back("gps_time");
+  if (layout.nir) names.push_back("nir");
+  if (layout.wave_packets) names.push_back("wave_packets");
+  if (extra_bytes > 0) names.push_back("extra bytes (" + std::to_string(extra_bytes) + " per point)");
+  return names;
 }
+
+std::string format_name(const Header& h) {
+  return "las 1." + std::to_string(h.minor) + " point format " + std::to_string(h.format);
+}
+
+/// The record of point `i` (the header's count was checked against the file size).
+std::string_view record(const Source& src, const Header& h, std::uint64_t i) {
+  return src.bytes.substr(h.offset_to_points + static_cast<std::size_t>(i) * h.record_length, h.record_length);
+}
+
+Vec3d position(const Header& h, std::string_view r) {
+  Vec3d p;
+  for (int a = 0; a < 3; ++a) {
+    const auto q = static_cast<std::int32_t>(static_cast<std::uint32_t>(le(r, 4 * static_cast<std::size_t>(a), 4)));
+    p[a] = h.offset[a] + h.scale[a] * q;
+  }
+  return p;
+}
+
+// Formats 0-5 keep flags in the top 3 bits of the classification byte.
+std::uint8_t class_of(const PointLayout& layout, std::string_view r) {
+  return static_cast<std::uint8_t>(layout.extended ? le(r, 16, 1) : le(r, 15, 1) & 0x1Fu);
+}
+
+std::array<std::uint16_t, 3> rgb16(const PointLayout& layout, std::string_view r) {
+  std::array<std::uint16_t, 3> c{};
+  for (std::size_t k = 0; k < 3; ++k)
+    c[k] = static_cast<std::uint16_t>(le(r, static_cast<std::size_t>(layout.rgb) + 2 * k, 2));
+  return c;
+}
+
+// The spec's colours are 16-bit; many writers store 8-bit values unscaled, which a maximum of 255 over the whole
+// file betrays.
+Rgb8 to_rgb8(const std::array<std::uint16_t, 3>& c, std::uint16_t colour_max) {
+  const double to_8bit = colour_max <= 255 ? 1.0 : 255.0 / 65535.0;
+  return {to_channel(c[0] * to_8bit), to_channel(c[1] * to_8bit), to_channel(c[2] * to_8bit)};
+}
+
+/// The attributes parse_las keeps, filled record by record.
+struct Attributes {
+  std::vector<float> classification, intensity, return_number;
+
+  void add(const PointLayout& layout, std::string_view r) {
+    classification.push_back(static_cast<float>(class_of(layout, r)));
+    intensity.push_back(static_cast<float>(le(r, 12, 2)));
+    const auto returns = static_cast<unsigned>(le(r, 14, 1));
+    return_number.push_back(static_cast<float>(layout.extended ? returns & 0x0Fu : returns & 0x07u));
+  }
+  std::vector<PointAttribute> take() {
+    return {{"classification", std::move(classification)},
+            {"intensity", std::move(intensity)},
+            {"return_number", std::move(return_number)}};
+  }
+};
 
 }  // namespace
 
@@ -156,38 +211,82 @@ RawCloud parse_las(const Source& src, Want) {
   const Header h = read_header(src);
   const PointLayout layout = layout_of(h.format);
   RawCloud raw;
-  raw.format = "las 1." + std::to_string(h.minor) + " point format " + std::to_string(h.format);
+  raw.format = format_name(h);
   const auto n = static_cast<std::size_t>(h.count);
   raw.positions.resize(n);
-  std::vector<float> classification(n), intensity(n), return_number(n);
+  Attributes attributes;
   std::vector<std::array<std::uint16_t, 3>> rgb(layout.rgb >= 0 ? n : 0);
-  std::uint16_t rgb_max = 0;
+  std::uint16_t colour_max = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::string_view r = src.bytes.substr(h.offset_to_points + i * h.record_length, h.record_length);
-    for (int a = 0; a < 3; ++a) {
-      const auto q = static_cast<std::int32_t>(static_cast<std::uint32_t>(le(r, 4 * static_cast<std::size_t>(a), 4)));
-      raw.positions[i][a] = h.offset[a] + h.scale[a] * q;
-    }
-    intensity[i] = static_cast<float>(le(r, 12, 2));
-    const auto returns = static_cast<unsigned>(le(r, 14, 1));
-    return_number[i] = static_cast<float>(layout.extended ? returns & 0x0Fu : returns & 0x07u);
-    // Formats 0-5 keep flags in the top 3 bits of the classification byte.
-    classification[i] = static_cast<float>(layout.extended ? le(r, 16, 1) : le(r, 15, 1) & 0x1Fu);
+    const std::string_view r = record(src, h, i);
+    raw.positions[i] = position(h, r);
+    attributes.add(layout, r);
     if (layout.rgb < 0) continue;
-    for (std::size_t c = 0; c < 3; ++c) {
-      rgb[i][c] = static_cast<std::uint16_t>(le(r, static_cast<std::size_t>(layout.rgb) + 2 * c, 2));
-      rgb_max = std::max(rgb_max, rgb[i][c]);
-    }
+    rgb[i] = rgb16(layout, r);
+    colour_max = std::max({colour_max, rgb[i][0], rgb[i][1], rgb[i][2]});
   }
-  // The spec's colours are 16-bit; many writers store 8-bit values unscaled, which a maximum of 255 betrays.
-  const double to_8bit = rgb_max <= 255 ? 1.0 : 255.0 / 65535.0;
-  for (const auto& c : rgb)
-    raw.colors.push_back({to_channel(c[0] * to_8bit), to_channel(c[1] * to_8bit), to_channel(c[2] * to_8bit)});
-  raw.attributes.push_back({"classification", std::move(classification)});
-  raw.attributes.push_back({"intensity", std::move(intensity)});
-  raw.attributes.push_back({"return_number", std::move(return_number)});
-  list_unkept(raw, layout, h.record_length - kRecordSize[h.format]);
+  for (const auto& c : rgb) raw.colors.push_back(to_rgb8(c, colour_max));
+  raw.attributes = attributes.take();
+  raw.other_attributes = unkept(layout, h.record_length - kRecordSize[h.format]);
   return raw;
+}
+
+std::optional<StreamHeader> las_stream_header(const Source& src) {
+  if (!src.bytes.starts_with("LASF")) return std::nullopt;
+  const Header h = read_header(src);
+  const PointLayout layout = layout_of(h.format);
+  return StreamHeader{.count = h.count,
+                      .has_colors = layout.rgb >= 0,
+                      .format = format_name(h),
+                      .other_attributes = unkept(layout, h.record_length - kRecordSize[h.format]),
+                      .stream = stream_las,
+                      .read_kept = las_read_kept,
+                      .has_classes = true};
+}
+
+void stream_las(const Source& src, std::size_t chunk_points, PointSink& sink) {
+  const Header h = read_header(src);
+  const PointLayout layout = layout_of(h.format);
+  chunk_points = std::max<std::size_t>(chunk_points, 1);
+  std::vector<Vec3d> positions(chunk_points);
+  std::vector<std::uint8_t> classes(chunk_points);
+  std::size_t released = 0;
+  for (std::uint64_t first = 0; first < h.count; first += chunk_points) {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(chunk_points, h.count - first));
+    std::uint16_t colour_max = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string_view r = record(src, h, first + i);
+      positions[i] = position(h, r);
+      classes[i] = class_of(layout, r);
+      if (layout.rgb < 0) continue;
+      const std::array<std::uint16_t, 3> c = rgb16(layout, r);
+      colour_max = std::max({colour_max, c[0], c[1], c[2]});
+    }
+    sink.points({.first = first,
+                 .positions = std::span(positions).first(n),
+                 .classes = std::span(classes).first(n),
+                 .colour_max = colour_max});
+    if (src.mapped)
+      released = release_pages(src.bytes, released,
+                               h.offset_to_points + static_cast<std::size_t>(first + n) * h.record_length);
+  }
+}
+
+void las_read_kept(const Source& src, std::span<const std::uint64_t> kept, std::uint16_t colour_max, bool colors,
+                   PointCloud& cloud) {
+  const Header h = read_header(src);
+  const PointLayout layout = layout_of(h.format);
+  Attributes attributes;
+  std::size_t released = 0;
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    const std::string_view r = record(src, h, kept[k]);
+    attributes.add(layout, r);
+    if (colors && layout.rgb >= 0) cloud.colors.push_back(to_rgb8(rgb16(layout, r), colour_max));
+    // The kept records are visited in file order: their pages are released behind the reading as in the passes.
+    if (src.mapped && k % 4096 == 4095)
+      released = release_pages(src.bytes, released, static_cast<std::size_t>(r.data() - src.bytes.data()));
+  }
+  cloud.attributes = attributes.take();
 }
 
 }  // namespace pcsketch::io::detail

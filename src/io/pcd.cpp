@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "ply_types.h"
+#include "point_stream.h"
 #include "raw_cloud.h"
 #include "text_scan.h"
 
@@ -97,16 +98,31 @@ std::vector<char> unpack(const Source& src, std::size_t body, std::uint64_t size
   return unpacked;
 }
 
-}  // namespace
-
-RawCloud parse_pcd(const Source& src, Want) {
-  LineReader lines(src.bytes, 1, src.path);
-  std::string_view line, keyword, token;
+/// The header: fields and their offsets in a record, the count (checked against the bytes after the header), where
+/// the body starts.
+struct PcdHeader {
   std::vector<Field> fields;
-  std::uint64_t width = 0, height = 1, points = 0;
+  std::uint64_t points = 0;
+  std::string data;               ///< ascii, binary or binary_compressed
+  std::size_t record = 0;         ///< bytes of a binary record
+  std::size_t body = 0;           ///< byte offset of the points
+  std::uint64_t header_line = 0;  ///< the DATA line
+  std::array<const Field*, 3> xyz{}, nrm{};
+  const Field* rgb = nullptr;
+  bool has_normals = false;
+  std::vector<std::string> other_attributes;
+
+  PcdHeader() = default;
+  PcdHeader(const PcdHeader&) = delete;  // the Field pointers point into `fields`
+};
+
+// The header's keyword lines, up to and including DATA, into `h`; returns the reader after it.
+void read_keywords(const Source& src, LineReader& lines, PcdHeader& h) {
+  std::string_view line, keyword, token;
+  std::uint64_t width = 0, height = 1;
   bool have_points = false;
-  std::string data;
-  while (data.empty()) {
+  std::vector<Field>& fields = h.fields;
+  while (h.data.empty()) {
     if (!lines.next(line)) src.fail_at_line(lines.line() + 1, "PCD: header has no DATA line");
     if (line.starts_with("#")) continue;
     Tokens tokens(line, false);
@@ -142,73 +158,103 @@ RawCloud parse_pcd(const Source& src, Want) {
     } else if (keyword == "HEIGHT") {
       one_uint(height);
     } else if (keyword == "POINTS") {
-      one_uint(points);
+      one_uint(h.points);
       have_points = true;
     } else if (keyword == "DATA") {
       if (values.size() != 1) fail("DATA needs ascii, binary or binary_compressed");
-      data = values[0];
-      if (data != "ascii" && data != "binary" && data != "binary_compressed") fail("unknown DATA " + quote(data));
+      h.data = values[0];
+      if (h.data != "ascii" && h.data != "binary" && h.data != "binary_compressed")
+        fail("unknown DATA " + quote(h.data));
     } else {
       fail("unknown header keyword " + quote(keyword));
     }
   }
-  const std::uint64_t header_line = lines.line();
-  if (fields.empty()) src.fail_at_line(header_line, "PCD: header has no FIELDS line");
+  h.header_line = lines.line();
+  if (fields.empty()) src.fail_at_line(h.header_line, "PCD: header has no FIELDS line");
   if (!have_points) {
     if (height != 0 && width > 0xffffffffull / height)
-      src.fail_at_line(header_line, "PCD: WIDTH x HEIGHT is too large");
-    points = width * height;
+      src.fail_at_line(h.header_line, "PCD: WIDTH x HEIGHT is too large");
+    h.points = width * height;
   }
+}
 
-  std::size_t record = 0;
-  for (Field& f : fields) {
+// Types, offsets and the fields kept; the count against the bytes after the header.
+void read_header(const Source& src, PcdHeader& h) {
+  LineReader lines(src.bytes, 1, src.path);
+  read_keywords(src, lines, h);
+  for (Field& f : h.fields) {
     const auto s = scalar_of(f.type, f.size);
-    if (!s) src.fail_at_line(header_line, "PCD: field " + quote(f.name) + " has unsupported TYPE/SIZE");
+    if (!s) src.fail_at_line(h.header_line, "PCD: field " + quote(f.name) + " has unsupported TYPE/SIZE");
     f.scalar = *s;
-    f.offset = record;
-    record += f.size * f.count;
+    f.offset = h.record;
+    h.record += f.size * f.count;
   }
-  if (record > (1u << 20)) src.fail_at_line(header_line, "PCD: a point record of more than 1 MiB");
+  if (h.record > (1u << 20)) src.fail_at_line(h.header_line, "PCD: a point record of more than 1 MiB");
   const auto find = [&](std::initializer_list<std::string_view> names) -> const Field* {
-    for (const Field& f : fields)
+    for (const Field& f : h.fields)
       if (std::find(names.begin(), names.end(), f.name) != names.end()) return &f;
     return nullptr;
   };
-  const std::array<const Field*, 3> xyz{find({"x"}), find({"y"}), find({"z"})};
-  const std::array<const Field*, 3> nrm{find({"normal_x", "nx"}), find({"normal_y", "ny"}), find({"normal_z", "nz"})};
-  const Field* rgb = find({"rgb", "rgba"});
-  if (!xyz[0] || !xyz[1] || !xyz[2]) src.fail_at_line(header_line, "PCD: FIELDS lacks one of x, y, z");
-  const bool has_normals = nrm[0] && nrm[1] && nrm[2];
-
-  RawCloud raw;
-  raw.format = "pcd " + data;
-  for (const Field& f : fields)
-    if (std::find(xyz.begin(), xyz.end(), &f) == xyz.end() &&
-        (!has_normals || std::find(nrm.begin(), nrm.end(), &f) == nrm.end()) && &f != rgb)
-      raw.other_attributes.push_back(f.name);
+  h.xyz = {find({"x"}), find({"y"}), find({"z"})};
+  h.nrm = {find({"normal_x", "nx"}), find({"normal_y", "ny"}), find({"normal_z", "nz"})};
+  h.rgb = find({"rgb", "rgba"});
+  if (!h.xyz[0] || !h.xyz[1] || !h.xyz[2]) src.fail_at_line(h.header_line, "PCD: FIELDS lacks one of x, y, z");
+  h.has_normals = h.nrm[0] && h.nrm[1] && h.nrm[2];
+  for (const Field& f : h.fields)
+    if (std::find(h.xyz.begin(), h.xyz.end(), &f) == h.xyz.end() &&
+        (!h.has_normals || std::find(h.nrm.begin(), h.nrm.end(), &f) == h.nrm.end()) && &f != h.rgb)
+      h.other_attributes.push_back(f.name);
 
   // Check the point count against the bytes left before allocating anything sized by it.
-  const std::size_t body = lines.consumed(src.bytes);
-  const std::uint64_t left = src.bytes.size() - body;
-  const std::uint64_t min_bytes = data == "ascii" ? 2 * fields.size() : data == "binary" ? record : 1;
-  const std::uint64_t budget = left + (data == "ascii" ? 1 : 0);  // the last ascii value may end the file
-  if (points > 0xffffffffull || points > budget / min_bytes)
-    src.fail_at_byte(body, "PCD: header claims " + std::to_string(points) + " points, but only " +
-                               std::to_string(left) + " bytes follow the header (truncated file?)");
+  h.body = lines.consumed(src.bytes);
+  const std::uint64_t left = src.bytes.size() - h.body;
+  const std::uint64_t min_bytes = h.data == "ascii" ? 2 * h.fields.size() : h.data == "binary" ? h.record : 1;
+  const std::uint64_t budget = left + (h.data == "ascii" ? 1 : 0);  // the last ascii value may end the file
+  if (h.points > 0xffffffffull || h.points > budget / min_bytes)
+    src.fail_at_byte(h.body, "PCD: header claims " + std::to_string(h.points) + " points, but only " +
+                                 std::to_string(left) + " bytes follow the header (truncated file?)");
+}
+
+/// One point's position, normal (when `n`) and colour (when `c`); `value_of(field)` reads a field's first value.
+template <class ValueOf>
+void decode(const PcdHeader& h, ValueOf&& value_of, Vec3d& p, Vec3f* n, Rgb8* c) {
+  p = Vec3d(value_of(*h.xyz[0]), value_of(*h.xyz[1]), value_of(*h.xyz[2]));
+  if (n != nullptr) *n = Vec3f(float(value_of(*h.nrm[0])), float(value_of(*h.nrm[1])), float(value_of(*h.nrm[2])));
+  if (c != nullptr) *c = unpack_rgb(value_of(*h.rgb), h.rgb->scalar);
+}
+
+}  // namespace
+
+bool sniff_pcd(std::string_view head) {
+  while (head.starts_with("#")) {
+    const std::size_t eol = head.find('\n');
+    if (eol == std::string_view::npos) return false;
+    head.remove_prefix(eol + 1);
+  }
+  return head.starts_with("VERSION") || head.starts_with("FIELDS");
+}
+
+RawCloud parse_pcd(const Source& src, Want) {
+  PcdHeader h;
+  read_header(src, h);
+  const std::uint64_t points = h.points;
+  const std::vector<Field>& fields = h.fields;
+  RawCloud raw;
+  raw.format = "pcd " + h.data;
+  raw.other_attributes = h.other_attributes;
   // The compressed body's sizes are checked (and it is unpacked) before the point arrays are allocated.
   std::vector<char> unpacked;
-  if (data == "binary_compressed") unpacked = unpack(src, body, points * record);
+  if (h.data == "binary_compressed") unpacked = unpack(src, h.body, points * h.record);
   raw.positions.resize(points);
-  if (has_normals) raw.normals.resize(points);
-  if (rgb) raw.colors.resize(points);
+  if (h.has_normals) raw.normals.resize(points);
+  if (h.rgb) raw.colors.resize(points);
 
   const auto store = [&](std::size_t i, auto&& value_of) {
-    raw.positions[i] = Vec3d(value_of(*xyz[0]), value_of(*xyz[1]), value_of(*xyz[2]));
-    if (has_normals)
-      raw.normals[i] = Vec3f(float(value_of(*nrm[0])), float(value_of(*nrm[1])), float(value_of(*nrm[2])));
-    if (rgb) raw.colors[i] = unpack_rgb(value_of(*rgb), rgb->scalar);
+    decode(h, value_of, raw.positions[i], h.has_normals ? &raw.normals[i] : nullptr, h.rgb ? &raw.colors[i] : nullptr);
   };
-  if (data == "ascii") {
+  if (h.data == "ascii") {
+    LineReader lines(src.bytes.substr(h.body), h.header_line + 1, src.path);
+    std::string_view line, token;
     // The first value of each field on a line, by field order.
     std::vector<std::size_t> first_token(fields.size());
     std::size_t tokens_per_line = 0;
@@ -234,8 +280,8 @@ RawCloud parse_pcd(const Source& src, Want) {
     return raw;
   }
   // Binary: point-major records. Compressed: field-major arrays (each field's values for every point in turn).
-  std::string_view bytes = src.bytes.substr(body);
-  if (data == "binary_compressed") {
+  std::string_view bytes = src.bytes.substr(h.body);
+  if (h.data == "binary_compressed") {
     bytes = std::string_view(unpacked.data(), unpacked.size());
     for (std::size_t i = 0; i < points; ++i)
       store(i, [&](const Field& f) {
@@ -244,8 +290,40 @@ RawCloud parse_pcd(const Source& src, Want) {
     return raw;
   }
   for (std::size_t i = 0; i < points; ++i)
-    store(i, [&](const Field& f) { return load_ply_scalar(f.scalar, bytes.data() + i * record + f.offset, false); });
+    store(i, [&](const Field& f) { return load_ply_scalar(f.scalar, bytes.data() + i * h.record + f.offset, false); });
   return raw;
+}
+
+std::optional<StreamHeader> pcd_stream_header(const Source& src) {
+  if (!sniff_pcd(src.bytes)) return std::nullopt;
+  PcdHeader h;
+  read_header(src, h);
+  if (h.data != "binary") return std::nullopt;
+  return StreamHeader{.count = h.points,
+                      .has_normals = h.has_normals,
+                      .has_colors = h.rgb != nullptr,
+                      .format = "pcd binary",
+                      .other_attributes = h.other_attributes,
+                      .stream = stream_pcd};
+}
+
+std::optional<std::uint64_t> pcd_header_count(const Source& src) {
+  if (!sniff_pcd(src.bytes)) return std::nullopt;
+  PcdHeader h;
+  read_header(src, h);
+  return h.points;
+}
+
+void stream_pcd(const Source& src, std::size_t chunk_points, PointSink& sink) {
+  PcdHeader h;
+  read_header(src, h);
+  stream_chunks(
+      src, h.points, chunk_points, h.has_normals, h.rgb != nullptr, sink,
+      [&](std::uint64_t i, Vec3d& p, Vec3f* n, Rgb8* c) {
+        const char* r = src.bytes.data() + h.body + i * h.record;
+        decode(h, [&](const Field& f) { return load_ply_scalar(f.scalar, r + f.offset, false); }, p, n, c);
+      },
+      [&](std::uint64_t end) { return h.body + static_cast<std::size_t>(end) * h.record; });
 }
 
 }  // namespace pcsketch::io::detail

@@ -319,7 +319,8 @@ std::optional<StreamHeader> ply_stream_header(const Source& src) {
   check_counts(src, h);
   const Element& vertex = vertex_element(src, h);
   const VertexLayout l = vertex_layout(src, vertex);
-  return StreamHeader{vertex.count, l.has_normals, l.has_colors, format_name(h), skipped_properties(vertex, l)};
+  return StreamHeader{vertex.count, l.has_normals, l.has_colors, format_name(h), skipped_properties(vertex, l),
+                      stream_ply};
 }
 
 std::optional<std::uint64_t> ply_header_count(const Source& src) {
@@ -339,20 +340,11 @@ void stream_ply(const Source& src, std::size_t chunk_points, PointSink& sink) {
     if (&e == &vertex) break;
     body.skip(e);
   }
-  chunk_points = std::max<std::size_t>(chunk_points, 1);
-  std::vector<Vec3d> positions(chunk_points);
-  std::vector<Vec3f> normals(l.has_normals ? chunk_points : 0);
-  std::vector<Rgb8> colors(l.has_colors ? chunk_points : 0);
-  std::size_t released = 0;
-  for (std::uint64_t first = 0; first < vertex.count; first += chunk_points) {
-    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(chunk_points, vertex.count - first));
-    for (std::size_t i = 0; i < n; ++i)
-      read_vertex(body, vertex, l, positions[i], l.has_normals ? &normals[i] : nullptr,
-                  l.has_colors ? &colors[i] : nullptr);
-    sink.points({first, std::span(positions).first(n), std::span(normals).first(l.has_normals ? n : 0),
-                 std::span(colors).first(l.has_colors ? n : 0)});
-    if (src.mapped) released = release_pages(src.bytes, released, body.position());
-  }
+  // The vertices are read in order, so the body reader's position is where the points read so far end.
+  stream_chunks(
+      src, vertex.count, chunk_points, l.has_normals, l.has_colors, sink,
+      [&](std::uint64_t, Vec3d& p, Vec3f* n, Rgb8* c) { read_vertex(body, vertex, l, p, n, c); },
+      [&](std::uint64_t) { return body.position(); });
 }
 
 RawCloud parse_ply(const Source& src, Want want) {

@@ -2,6 +2,7 @@
 // Streaming readers: a format hands its points over in chunks, in file order, without building a RawCloud; the
 // consumer (src/io/stream_read.cpp) keeps what it needs. Memory then grows with what is kept, not with the file.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -13,21 +14,34 @@
 
 namespace pcsketch::io::detail {
 
-/// What the header says, before any point is handed over.
+class PointSink;
+
+/// What the header says, before any point is handed over, and how to walk the points.
 struct StreamHeader {
   std::uint64_t count = 0;  ///< points the file holds (checked against the file size)
   bool has_normals = false;
   bool has_colors = false;
   std::string format;
   std::vector<std::string> other_attributes;
+  /// Hands every point to `sink` in file order, `chunk_points` at a time (stream_ply, stream_las).
+  void (*stream)(const Source& source, std::size_t chunk_points, PointSink& sink) = nullptr;
+  /// Formats with fixed-size records (LAS): the chunks carry positions and classes only; after thinning, this reads
+  /// the colours (when `colors`) and the attributes of the kept points (ascending file indices) from their records.
+  /// `colour_max`: the largest colour channel in the file (PointChunk::colour_max). nullptr: the chunks carry the
+  /// colours and the format has no per-point attributes.
+  void (*read_kept)(const Source& source, std::span<const std::uint64_t> kept, std::uint16_t colour_max, bool colors,
+                    PointCloud& cloud) = nullptr;
+  bool has_classes = false;  ///< the chunks carry a classification per point (--classes, --drop-classes)
 };
 
-/// One chunk of consecutive points; `normals` and `colors` are empty when the file has none.
+/// One chunk of consecutive points; `normals`, `colors` and `classes` are empty when the chunks carry none.
 struct PointChunk {
   std::uint64_t first = 0;  ///< file index of positions[0]
   std::span<const Vec3d> positions;
   std::span<const Vec3f> normals;
   std::span<const Rgb8> colors;
+  std::span<const std::uint8_t> classes;  ///< LAS: the classification of each point
+  std::uint16_t colour_max = 0;           ///< LAS: the largest colour channel of the chunk's records (16-bit or 8-bit?)
 };
 
 /// Receives the chunks in file order; throwing stops the stream.
@@ -41,6 +55,29 @@ class PointSink {
 /// to which pages are released, the `from` of the next call.
 std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t to);
 
+/// The chunk loop of the readers whose chunks carry positions, normals and colours (PLY, PCD):
+/// `read(index, position, normal or nullptr, colour or nullptr)` decodes the points in file order; `end_byte(n)` is
+/// the offset where the first n points end, up to which pages are released after each chunk.
+template <class Read, class EndByte>
+void stream_chunks(const Source& src, std::uint64_t count, std::size_t chunk_points, bool has_normals, bool has_colors,
+                   PointSink& sink, Read&& read, EndByte&& end_byte) {
+  chunk_points = std::max<std::size_t>(chunk_points, 1);
+  std::vector<Vec3d> positions(chunk_points);
+  std::vector<Vec3f> normals(has_normals ? chunk_points : 0);
+  std::vector<Rgb8> colors(has_colors ? chunk_points : 0);
+  std::size_t released = 0;
+  for (std::uint64_t first = 0; first < count; first += chunk_points) {
+    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(chunk_points, count - first));
+    for (std::size_t i = 0; i < n; ++i)
+      read(first + i, positions[i], has_normals ? &normals[i] : nullptr, has_colors ? &colors[i] : nullptr);
+    sink.points({.first = first,
+                 .positions = std::span(positions).first(n),
+                 .normals = std::span(normals).first(has_normals ? n : 0),
+                 .colors = std::span(colors).first(has_colors ? n : 0)});
+    if (src.mapped) released = release_pages(src.bytes, released, end_byte(first + n));
+  }
+}
+
 /// At most this many positions (every n-th point) are sampled for the robust box of the resolution rule.
 inline constexpr std::uint64_t kSurveySample = 1u << 18;
 
@@ -50,13 +87,21 @@ Vec3d robust_extent(std::vector<Vec3d> sample);
 /// Why the resolution rule thinned a file of `count` points ("2097152 points budget for a 1024x1024 image, …").
 std::string resolution_reason(const OutputResolution& resolution, std::uint64_t count);
 
-/// Streaming readers (binary PLY for now; PCD binary, LAS and XYZ are read whole). The header of a file the reader
-/// can stream, or nullopt (another format or layout); throws the reader's error for a malformed header or a count
-/// the file cannot hold. stream_ply() then hands every point to `sink`, `chunk_points` at a time; when
-/// `source.mapped`, the pages already read are released (madvise) so that the mapping does not stay resident.
+/// Streaming readers (binary PLY, LAS and binary PCD; compressed or ascii PCD, XYZ and the text formats are read
+/// whole). The header of a file the reader can stream, or nullopt (another format or layout); throws the reader's
+/// error for a malformed header or a count the file cannot hold. stream_ply() / stream_las() / stream_pcd() then hand
+/// every point to `sink`, `chunk_points` at a time; when `source.mapped`, the pages already read are released
+/// (madvise) so that the mapping does not stay resident. las_read_kept() is LAS's StreamHeader::read_kept.
 std::optional<StreamHeader> ply_stream_header(const Source& source);
 std::optional<std::uint64_t> ply_header_count(const Source& source);  ///< any PLY layout; nullopt: not PLY
 void stream_ply(const Source& source, std::size_t chunk_points, PointSink& sink);
+std::optional<StreamHeader> las_stream_header(const Source& source);
+void stream_las(const Source& source, std::size_t chunk_points, PointSink& sink);
+std::optional<StreamHeader> pcd_stream_header(const Source& source);
+void stream_pcd(const Source& source, std::size_t chunk_points, PointSink& sink);
+std::optional<std::uint64_t> pcd_header_count(const Source& source);  ///< any PCD layout; nullopt: not PCD
+void las_read_kept(const Source& source, std::span<const std::uint64_t> kept, std::uint16_t colour_max, bool colors,
+                   PointCloud& cloud);
 
 /// The whole streamed read: nullopt when the file is not streamable or `options` ask for no thinning this file
 /// needs (then the in-memory read runs, and normal clouds read exactly as before); else the thinned cloud.

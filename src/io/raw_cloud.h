@@ -56,6 +56,9 @@ RawCloud parse_off(const Source& source, Want want);
 RawCloud parse_obj(const Source& source, Want want);
 RawCloud parse_las(const Source& source, Want want);
 
+/// PCD's magic: '#' comment lines, then a VERSION or FIELDS line.
+bool sniff_pcd(std::string_view head);
+
 /// Removes every exact copy of an earlier point (keeping the first, with its normal and colour), in expected linear
 /// time; returns the number removed. Positions must be finite.
 std::size_t collapse_duplicates(RawCloud& raw);
@@ -63,6 +66,19 @@ std::size_t collapse_duplicates(RawCloud& raw);
 /// A colour channel from a number in [0, 255] (rounded, clamped; non-finite gives 0).
 inline std::uint8_t to_channel(double v) {
   return static_cast<std::uint8_t>(std::clamp(std::round(std::isfinite(v) ? v : 0.0), 0.0, 255.0));
+}
+
+/// What left no point, for the message "none of the N points is left by the …".
+inline const char* filters_named(bool by_class, bool crop) {
+  return !crop ? "class filters" : by_class ? "class filters and the crop box" : "crop box";
+}
+
+/// --classes and --drop-classes: whether a point of class `c` is kept.
+inline bool class_kept(const ReadOptions& options, int c) {
+  const auto listed = [c](const std::vector<int>& classes) {
+    return std::find(classes.begin(), classes.end(), c) != classes.end();
+  };
+  return (options.classes.empty() || listed(options.classes)) && !listed(options.drop_classes);
 }
 
 /// The origin of a cloud whose bounding box is [lo, hi] (docs/io.md, "Precision"): 0 unless it lies far away.

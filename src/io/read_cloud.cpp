@@ -30,16 +30,6 @@ bool sniff_off(std::string_view head) {
   return i == head.size() || std::isspace(static_cast<unsigned char>(head[i]));
 }
 
-// PCD: '#' comment lines, then a VERSION or FIELDS line.
-bool sniff_pcd(std::string_view head) {
-  while (head.starts_with("#")) {
-    const std::size_t eol = head.find('\n');
-    if (eol == std::string_view::npos) return false;
-    head.remove_prefix(eol + 1);
-  }
-  return head.starts_with("VERSION") || head.starts_with("FIELDS");
-}
-
 struct Reader {
   std::string_view name;
   std::array<std::string_view, 5> extensions;  ///< lower case, with the dot; unused entries empty
@@ -53,7 +43,7 @@ constexpr std::array kReaders{
     Reader{"PLY", {".ply"}, sniff_ply, detail::parse_ply, true},
     Reader{"LAS", {".las", ".laz"}, sniff_las, detail::parse_las, false},
     Reader{"OFF", {".off"}, sniff_off, detail::parse_off, true},
-    Reader{"PCD", {".pcd"}, sniff_pcd, detail::parse_pcd, false},
+    Reader{"PCD", {".pcd"}, detail::sniff_pcd, detail::parse_pcd, false},
     Reader{"OBJ", {".obj"}, nullptr, detail::parse_obj, true},
     Reader{"XYZ", {".xyz", ".pts", ".txt", ".csv", ".asc"}, nullptr, detail::parse_xyz, false},
 };
@@ -149,10 +139,6 @@ void drop_non_finite(RawCloud& raw, ReadResult& result, const Source& source) {
                               std::to_string(all) + " points with a NaN or infinite coordinate");
 }
 
-bool listed(const std::vector<int>& classes, float value) {
-  return std::find(classes.begin(), classes.end(), static_cast<int>(value)) != classes.end();
-}
-
 // --classes, --drop-classes and --crop, all in one pass over the file's own coordinates.
 void filter(RawCloud& raw, ReadResult& result, const Source& source, const ReadOptions& options) {
   const bool by_class = !options.classes.empty() || !options.drop_classes.empty();
@@ -164,19 +150,15 @@ void filter(RawCloud& raw, ReadResult& result, const Source& source, const ReadO
     source.fail(raw.format + ": the file has no classification to keep or drop classes by (LAS files have one)");
   const std::size_t all = raw.positions.size();
   const std::size_t kept = compact(raw, [&](std::size_t i) {
-    if (by_class) {
-      const float c = classification->values[i];
-      if (!options.classes.empty() && !listed(options.classes, c)) return false;
-      if (listed(options.drop_classes, c)) return false;
-    }
+    if (by_class && !detail::class_kept(options, static_cast<int>(classification->values[i]))) return false;
     const Vec3d& p = raw.positions[i];
     return !options.crop ||
            ((p.array() >= options.crop->min.array()).all() && (p.array() <= options.crop->max.array()).all());
   });
   result.dropped_by_filter = all - kept;
   if (kept == 0) {
-    const char* by = !options.crop ? "class filters" : by_class ? "class filters and the crop box" : "crop box";
-    source.fail(raw.format + ": none of the " + std::to_string(all) + " points is left by the " + by);
+    source.fail(raw.format + ": none of the " + std::to_string(all) + " points is left by the " +
+                detail::filters_named(by_class, options.crop.has_value()));
   }
 }
 
@@ -299,7 +281,10 @@ ReadResult read_point_cloud(const std::string& path, const ReadOptions& options)
 
 std::optional<std::uint64_t> points_in_header(const std::string& path) {
   const detail::MappedFile file(path);
-  return detail::ply_header_count(Source{file.bytes(), path});
+  const Source source{file.bytes(), path};
+  if (const std::optional<detail::StreamHeader> las = detail::las_stream_header(source)) return las->count;
+  if (const std::optional<std::uint64_t> pcd = detail::pcd_header_count(source)) return pcd;
+  return detail::ply_header_count(source);
 }
 
 ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::string& name_hint,

@@ -1,7 +1,8 @@
-// Streamed read with voxel thinning: two passes over the mapped file, never a whole RawCloud. The first finds the
-// bounding box (and the robust box for the resolution rule), the second keeps per occupied cell the point nearest
-// its centre in a hash map. The rule, the grid and the tie-breaks are decimate()'s, computed on the same float
-// positions, so the kept points are exactly those of the in-memory read followed by decimate().
+// Streamed read with voxel thinning (binary PLY, LAS, binary PCD): two passes over the mapped file, never a whole
+// RawCloud. The first finds the bounding box (and the robust box for the resolution rule), the second keeps per
+// occupied cell the point nearest its centre in a hash map. The rule, the grid and the tie-breaks are decimate()'s,
+// computed on the same float positions, so the kept points are exactly those of the in-memory read followed by
+// decimate().
 
 #include <sys/mman.h>
 #include <unistd.h>
@@ -19,7 +20,10 @@
 namespace pcsketch::io::detail {
 namespace {
 
-bool inside(const ReadOptions& options, const Vec3d& p) {
+// The filters of the whole read (read_cloud.cpp filter()): --classes, --drop-classes, --crop.
+bool filtered_in(const ReadOptions& options, const PointChunk& c, std::size_t i) {
+  if (!c.classes.empty() && !class_kept(options, c.classes[i])) return false;
+  const Vec3d& p = c.positions[i];
   return !options.crop ||
          ((p.array() >= options.crop->min.array()).all() && (p.array() <= options.crop->max.array()).all());
 }
@@ -31,14 +35,15 @@ class Survey final : public PointSink {
       : options_(options), count_(count), stride_(std::max<std::uint64_t>(1, count / kSurveySample)), report_(report) {}
 
   void points(const PointChunk& c) override {
+    colour_max = std::max(colour_max, c.colour_max);
     for (std::size_t i = 0; i < c.positions.size(); ++i) {
       const Vec3d& p = c.positions[i];
       if (!p.allFinite()) {
         ++non_finite;
         continue;
       }
-      if (!inside(options_, p)) {
-        ++cropped;
+      if (!filtered_in(options_, c, i)) {
+        ++filtered;
         continue;
       }
       lo = kept == 0 ? p : lo.cwiseMin(p);
@@ -54,7 +59,8 @@ class Survey final : public PointSink {
     report_(0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_));
   }
 
-  std::uint64_t non_finite = 0, cropped = 0, kept = 0, bad_normals = 0, unit_normals = 0;
+  std::uint64_t non_finite = 0, filtered = 0, kept = 0, bad_normals = 0, unit_normals = 0;
+  std::uint16_t colour_max = 0;  ///< PointChunk::colour_max over the file
   Vec3d lo = Vec3d::Zero(), hi = Vec3d::Zero();
   std::vector<Vec3d> sample;
 
@@ -80,7 +86,7 @@ class Voxeliser final : public PointSink {
       const std::size_t end = std::min(start + kBatch, c.positions.size());
       std::size_t n = 0;
       for (std::size_t i = start; i < end; ++i)
-        if (candidate(c.positions[i], batch[n])) batch[n++].index = c.first + i;
+        if (candidate(c, i, batch[n])) batch[n++].index = c.first + i;
       cells.reserve_for(n);
       for (std::size_t k = 0; k < n; ++k) cells.prefetch(batch[k].key);
       for (std::size_t k = 0; k < n; ++k) {
@@ -103,8 +109,9 @@ class Voxeliser final : public PointSink {
   };
 
   // decimate()'s cell and distance for `p`, on the float position the whole read would store; false: not kept.
-  bool candidate(const Vec3d& p, Candidate& out) const {
-    if (!p.allFinite() || !inside(options_, p)) return false;
+  bool candidate(const PointChunk& c, std::size_t i, Candidate& out) const {
+    const Vec3d& p = c.positions[i];
+    if (!p.allFinite() || !filtered_in(options_, c, i)) return false;
     const Vec3f f = (p - origin_).cast<float>();
     const Vec3d q = (f.cast<double>() - lo_) / cell_;
     for (int a = 0; a < 3; ++a) out.key[static_cast<std::size_t>(a)] = static_cast<std::int32_t>(std::floor(q[a]));
@@ -138,7 +145,8 @@ bool normals_usable(const Survey& s, ReadResult& result, const Source& source) {
   return true;
 }
 
-void check_survey(const Survey& s, const StreamHeader& header, ReadResult& result, const Source& source) {
+void check_survey(const Survey& s, const StreamHeader& header, const ReadOptions& options, ReadResult& result,
+                  const Source& source) {
   if (header.count == 0) source.fail(header.format + ": the file holds no points");
   if (s.non_finite == header.count)
     source.fail(header.format + ": all " + std::to_string(header.count) +
@@ -148,7 +156,27 @@ void check_survey(const Survey& s, const StreamHeader& header, ReadResult& resul
                               std::to_string(header.count) + " points with a NaN or infinite coordinate");
   if (s.kept == 0)
     source.fail(header.format + ": none of the " + std::to_string(header.count - s.non_finite) +
-                " points is left by the crop box");
+                " points is left by the " +
+                filters_named(!options.classes.empty() || !options.drop_classes.empty(), options.crop.has_value()));
+}
+
+// The thinning's cell: --voxel, or the resolution rule's when larger (both: the larger of the two).
+DecimateReport choose_cell(const Survey& survey, const DecimateOptions& d, bool by_resolution, std::uint64_t count) {
+  DecimateReport thinning;
+  thinning.streamed = true;
+  thinning.points_before = survey.kept;
+  thinning.cell = d.voxel.value_or(0.0);
+  thinning.reason = d.voxel ? "--voxel" : "";
+  if (by_resolution) {
+    const double cell = resolution_cell(*d.resolution, robust_extent(survey.sample));
+    if (cell > thinning.cell) {
+      thinning.cell = cell;
+      thinning.reason = resolution_reason(*d.resolution, count);
+    }
+  }
+  // A box without extent (all points on a line or at one place): a cell far below any spacing.
+  if (!(thinning.cell > 0.0)) thinning.cell = std::max((survey.hi - survey.lo).maxCoeff() * 1e-7, 1e-30);
+  return thinning;
 }
 
 }  // namespace
@@ -188,9 +216,13 @@ std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t 
 
 std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions& options, std::size_t chunk_points) {
   const DecimateOptions& d = options.decimate;
-  if (!options.classes.empty() || !options.drop_classes.empty()) return std::nullopt;
-  const std::optional<StreamHeader> header = ply_stream_header(source);
+  // Each streaming reader recognises its own magic; another format or layout is read whole.
+  std::optional<StreamHeader> header = ply_stream_header(source);
+  if (!header) header = las_stream_header(source);
+  if (!header) header = pcd_stream_header(source);
   if (!header) return std::nullopt;
+  // Class filters on a file without classes: the whole read gives its error.
+  if ((!options.classes.empty() || !options.drop_classes.empty()) && !header->has_classes) return std::nullopt;
   const bool by_resolution = d.resolution && header->count > d.resolution->budget();
   if (!d.voxel && !by_resolution) return std::nullopt;
 
@@ -198,12 +230,12 @@ std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions&
   const ProgressReporter report(options.progress, "read");
   report(0.0);
   Survey survey(options, header->count, report);
-  stream_ply(source, chunk_points, survey);
+  header->stream(source, chunk_points, survey);
   ReadResult result;
   result.points_in_file = header->count;
   result.dropped_non_finite = survey.non_finite;
-  result.dropped_by_filter = survey.cropped;
-  check_survey(survey, *header, result, source);
+  result.dropped_by_filter = survey.filtered;
+  check_survey(survey, *header, options, result, source);
 
   PointCloud& cloud = result.cloud;
   cloud.origin = choose_origin(survey.lo, survey.hi, options);
@@ -213,27 +245,16 @@ std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions&
   if (!lo.allFinite() || !hi.allFinite())
     source.fail("the points lie " + number((survey.hi - survey.lo).cwiseAbs().maxCoeff()) +
                 " units apart, beyond float range");
-  DecimateReport thinning;
-  thinning.streamed = true;
-  thinning.points_before = survey.kept;
-  thinning.cell = d.voxel.value_or(0.0);
-  thinning.reason = d.voxel ? "--voxel" : "";
-  if (by_resolution) {
-    const double cell = resolution_cell(*d.resolution, robust_extent(survey.sample));
-    if (cell > thinning.cell) {
-      thinning.cell = cell;
-      thinning.reason = resolution_reason(*d.resolution, header->count);
-    }
-  }
-  // A box without extent (all points on a line or at one place): a cell far below any spacing.
-  if (!(thinning.cell > 0.0)) thinning.cell = std::max((survey.hi - survey.lo).maxCoeff() * 1e-7, 1e-30);
+  DecimateReport thinning = choose_cell(survey, d, by_resolution, header->count);
   // A grid of more than 2^30 cells a side (a --voxel far below the box): decimate() in memory has 64-bit cells.
   if (((survey.hi - survey.lo) / thinning.cell).maxCoeff() >= CellTable::kMaxIndex - 2) return std::nullopt;
   const bool normals = header->has_normals && options.keep_normals && normals_usable(survey, result, source);
+  const bool colors = header->has_colors && options.keep_colors;
   Voxeliser voxels(options, cloud.origin, lo.cast<double>(), thinning.cell, header->count, normals,
-                   header->has_colors && options.keep_colors, report);
-  stream_ply(source, chunk_points, voxels);
-  voxels.cells.take(cloud.positions, cloud.normals, cloud.colors);
+                   colors && header->read_kept == nullptr, report);
+  header->stream(source, chunk_points, voxels);
+  const std::vector<std::uint64_t> kept = voxels.cells.take(cloud.positions, cloud.normals, cloud.colors);
+  if (header->read_kept != nullptr) header->read_kept(source, kept, survey.colour_max, colors, cloud);
   for (Vec3f& n : cloud.normals) n.normalize();
   thinning.points_after = cloud.size();
   thinning.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

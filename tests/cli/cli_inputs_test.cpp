@@ -101,5 +101,17 @@ TEST_F(CliInputs, VoxelThinningIsReportedInInfoAndTimings) {
   EXPECT_EQ(run("info " + xyz + " --max-points 3").status, 1);
 }
 
+TEST_F(CliInputs, FullResolutionKnowsTheLasHeaderCount) {
+  // The early memory check reads the LAS header's count, as it reads a PLY's (second argument: MemAvailable, kB).
+  const std::string las = write(path("scan.las"), test::write_las(three_classes()));
+  const CommandRun r = run("-q draw " + las + " --full-resolution -o " + path("a.svg"), "100");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("holds 3 points, estimated to need"), std::string::npos) << r.err;
+  // Streamed through the CLI with --voxel, --classes applying while streaming.
+  const CommandRun info = run("info " + las + " --voxel 0.1 --classes 2,6");
+  ASSERT_EQ(info.status, 0) << info.err;
+  EXPECT_NE(info.out.find("streamed) by --voxel"), std::string::npos) << info.out;
+}
+
 }  // namespace
 }  // namespace pcsketch

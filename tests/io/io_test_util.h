@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "pcsketch/core/error.h"
+#include "pcsketch/core/point_cloud.h"
 
 namespace pcsketch::test {
 
@@ -131,6 +132,33 @@ inline std::string make_ply(const std::vector<PlyElem>& elements, Layout layout,
     }
   }
   return out;
+}
+
+/// Two clouds alike to the bit: origin, positions, normals, colours and every attribute (streamed against whole reads).
+inline void expect_same_cloud(const PointCloud& a, const PointCloud& b) {
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(a.origin, b.origin);
+  for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a.positions[i], b.positions[i]) << i;
+  EXPECT_EQ(a.normals, b.normals);
+  EXPECT_EQ(a.colors, b.colors);
+  ASSERT_EQ(a.attributes.size(), b.attributes.size());
+  for (std::size_t k = 0; k < a.attributes.size(); ++k) {
+    EXPECT_EQ(a.attributes[k].name, b.attributes[k].name);
+    EXPECT_EQ(a.attributes[k].values, b.attributes[k].values) << a.attributes[k].name;
+  }
+}
+
+/// Each of `inputs`, read as `name` by `read(bytes, name, thinned)`, fails with one message naming the file and a
+/// place ("name (byte " or "name:"), the same whether `thinned` (the streamed read) or not (the whole read).
+template <class Read>
+void expect_same_errors(const std::vector<std::string>& inputs, const std::string& name, Read&& read) {
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    SCOPED_TRACE(i);
+    const std::string whole = error_of([&] { read(inputs[i], name, false); });
+    EXPECT_TRUE(whole.find(name + " (byte ") != std::string::npos || whole.find(name + ":") != std::string::npos)
+        << whole;
+    EXPECT_EQ(error_of([&] { read(inputs[i], name, true); }), whole);
+  }
 }
 
 }  // namespace pcsketch::test

@@ -15,6 +15,7 @@ namespace pcsketch::io {
 namespace {
 
 using test::Layout;
+using test::expect_same_cloud;
 using test::make_ply;
 using test::PlyElem;
 
@@ -36,14 +37,6 @@ std::string sphere_ply(std::size_t n, Layout layout, const std::string& type = "
                            double(i / 256 % 256), 7.0, double(i)});
   }
   return make_ply({vertex}, layout);
-}
-
-void expect_same_cloud(const PointCloud& a, const PointCloud& b) {
-  ASSERT_EQ(a.size(), b.size());
-  EXPECT_EQ(a.origin, b.origin);
-  for (std::size_t i = 0; i < a.size(); ++i) ASSERT_EQ(a.positions[i], b.positions[i]) << i;
-  EXPECT_EQ(a.normals, b.normals);
-  EXPECT_EQ(a.colors, b.colors);
 }
 
 // The reference: the whole cloud read, then thinned in memory.

@@ -87,8 +87,8 @@ ReadResult read_point_cloud(const std::string& path, const ReadOptions& options 
 ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::string& name_hint,
                                         const ReadOptions& options = {});
 
-/// The number of points a file's header declares (binary or ascii PLY), checked against the file size; nullopt for
-/// the other formats, whose count is known only once read. @throws pcsketch::Error for a malformed header.
+/// The number of points a file's header declares (PLY, LAS, PCD), checked against the file size; nullopt
+/// for the other formats, whose count is known only once read. @throws pcsketch::Error for a malformed header.
 std::optional<std::uint64_t> points_in_header(const std::string& path);
 
 /// Largest and smallest bounding-box side a cloud may have to be drawn. Positions are float and squared distances
