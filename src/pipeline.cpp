@@ -1,10 +1,7 @@
 #include "pcsketch/pipeline.h"
 
-#include <tbb/task_group.h>
-
 #include <array>
 #include <chrono>
-#include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "core/progress.h"
@@ -174,23 +171,6 @@ view::ViewResult compute_view(const Prepared& prepared, const view::Camera& came
   return v;
 }
 
-/// Ridge and valley lines, then the open scan's borders; the per-point curvature is freed after the lines.
-void lines_and_borders(Prepared& p, const DrawOptions& options, const ProgressFn& progress,
-                       const neighbourhood::KdTree* tree) {
-  p.features = features::extract_ridge_valley_lines(p.cloud, p.surface, with_progress(options.features, progress));
-  // Only the lines read the per-point curvature: 32 B a point freed before the scene and the views (the peak).
-  for (std::vector<float>* v : {&p.surface.curvature.k1, &p.surface.curvature.k2}) *v = std::vector<float>();
-  for (std::vector<Vec3f>* v : {&p.surface.curvature.dir1, &p.surface.curvature.dir2}) *v = std::vector<Vec3f>();
-  p.timings.ridge_valley_points = p.features.timings.detection;
-  p.timings.ridge_valley_connection = p.features.timings.tracing + p.features.timings.joining;
-  p.warnings.insert(p.warnings.end(), p.features.warnings.begin(), p.features.warnings.end());
-
-  const auto start = Clock::now();
-  p.boundary = features::find_boundaries(p.cloud.positions, p.cloud.normals, p.surface.neighbourhoods,
-                                         p.surface.spacing, with_progress(options.boundary, progress), tree);
-  p.timings.boundary = seconds_since(start);
-}
-
 }  // namespace
 
 nlohmann::json DrawOptions::to_json() const { return options::to_json(*this); }
@@ -223,29 +203,26 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   p.timings.curvature = st.curvature;
   p.warnings.insert(p.warnings.end(), p.surface.warnings.begin(), p.surface.warnings.end());
 
-  // The scene needs only the points, normals and spacings: it is built beside the lines and the border search,
-  // whose serial parts then leave no core idle. Their progress reports are serialised (the callback is one).
-  std::mutex reporting;
-  const ProgressFn progress = options.progress ? ProgressFn([&](std::string_view stage, double fraction) {
-    const std::lock_guard lock(reporting);
-    return options.progress(stage, fraction);
-  }) : ProgressFn();
+  p.features =
+      features::extract_ridge_valley_lines(p.cloud, p.surface, with_progress(options.features, options.progress));
+  // Only the lines read the per-point curvature: 32 B a point freed before the scene and the views (the peak).
+  for (std::vector<float>* v : {&p.surface.curvature.k1, &p.surface.curvature.k2}) *v = std::vector<float>();
+  for (std::vector<Vec3f>* v : {&p.surface.curvature.dir1, &p.surface.curvature.dir2}) *v = std::vector<Vec3f>();
+  p.timings.ridge_valley_points = p.features.timings.detection;
+  p.timings.ridge_valley_connection = p.features.timings.tracing + p.features.timings.joining;
+  p.warnings.insert(p.warnings.end(), p.features.warnings.begin(), p.features.warnings.end());
+
+  auto start = Clock::now();
+  p.boundary = features::find_boundaries(p.cloud.positions, p.cloud.normals, p.surface.neighbourhoods,
+                                         p.surface.spacing, with_progress(options.boundary, options.progress),
+                                         tree ? &*tree : nullptr);
+  p.timings.boundary = seconds_since(start);
+
+  start = Clock::now();
   p.local_spacing = view::local_spacing(p.surface.neighbourhoods);
-  tbb::task_group beside;
-  beside.run([&] {
-    const auto start = Clock::now();
-    // The scene of view::build_surface_scene, with the radii kept for shadow splatting.
-    p.scene.emplace(p.cloud.positions, p.cloud.normals, p.local_spacing, with_progress(options.scene, progress));
-    p.timings.scene = seconds_since(start);
-  });
-  try {
-    lines_and_borders(p, options, progress, tree ? &*tree : nullptr);
-  } catch (...) {
-    beside.cancel();
-    beside.wait();
-    throw;
-  }
-  beside.wait();
+  // The scene of view::build_surface_scene, with the radii kept for shadow splatting.
+  p.scene.emplace(p.cloud.positions, p.cloud.normals, p.local_spacing, with_progress(options.scene, options.progress));
+  p.timings.scene = seconds_since(start);
   return p;
 }
 
