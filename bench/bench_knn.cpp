@@ -77,7 +77,9 @@ int run(int argc, char** argv) {
   const std::vector<Measured> results{measure("bunny.off", n, 0, 0), measure("bunny.off", n, 0.001, 0),
                                       measure("camel.off", n, 0.002, 0.01)};
   Table table = per_point_table("16-NN of every point", names);
-  const auto row = [&](const std::string& label, auto seconds_of) { add_per_point_row(table, label, results, seconds_of); };
+  const auto row = [&](const std::string& label, auto seconds_of) {
+    add_per_point_row(table, label, results, seconds_of);
+  };
   row("kd-tree build (nanoflann, serial)", [](const Measured& m) { return m.build; });
   row("k-NN, nanoflann (a query a point)", [](const Measured& m) { return m.tree_knn; });
   row("k-NN, grid + tree for the rest", [](const Measured& m) { return m.grid_knn; });

@@ -3,7 +3,6 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cstdint>
 #include <cmath>
 #include <optional>
@@ -11,6 +10,7 @@
 #include <tbb/parallel_sort.h>
 
 #include "graph_curvature.h"
+#include "core/ordered_key.h"
 #include "core/parallel_chunks.h"
 
 namespace pcsketch::differential::detail {
@@ -38,11 +38,9 @@ double fit_radius(const neighbourhood::Neighbourhoods& shared, std::size_t i, st
          std::sqrt(static_cast<double>(fit) / static_cast<double>(shared.k));
 }
 
-/// (squared distance, index) in one word: non-negative floats order like their bits.
-std::uint64_t key(float squared_distance, std::uint32_t index) {
-  return std::uint64_t{std::bit_cast<std::uint32_t>(squared_distance)} << 32 | index;
-}
-float squared(std::uint64_t key) { return std::bit_cast<float>(static_cast<std::uint32_t>(key >> 32)); }
+using pcsketch::detail::key_index;
+using pcsketch::detail::key_value;
+using pcsketch::detail::ordered_key;
 
 /// The k nearest neighbours of the points of one group, from one radius query around the group instead of one k-NN
 /// query per point (a k-NN query of 512 keeps its result sorted as it goes, ~75 µs a point). The query's radius holds
@@ -65,7 +63,8 @@ class GroupNeighbours {
     radius_ = radius;
     tree_.radius_unsorted(centre_, radius_, ball_);
     by_centre_.resize(ball_.size());
-    for (std::size_t b = 0; b < ball_.size(); ++b) by_centre_[b] = key((points_[ball_[b]] - centre_).squaredNorm(), ball_[b]);
+    for (std::size_t b = 0; b < ball_.size(); ++b)
+      by_centre_[b] = ordered_key((points_[ball_[b]] - centre_).squaredNorm(), ball_[b]);
     std::sort(by_centre_.begin(), by_centre_.end());
   }
 
@@ -78,15 +77,15 @@ class GroupNeighbours {
     const float e = (p - centre_).norm();
     const float sure = radius_ - e;  // the ball holds every point this close to i
     if (by_centre_.size() > k_) {
-      const float d = std::sqrt(squared(by_centre_[k_]));
+      const float d = std::sqrt(key_value(by_centre_[k_]));
       const float limit = (d + 2 * e) * (1 + 1e-5f);
-      const auto end = std::upper_bound(by_centre_.begin(), by_centre_.end(), key(limit * limit, UINT32_MAX));
+      const auto end = std::upper_bound(by_centre_.begin(), by_centre_.end(), ordered_key(limit * limit, UINT32_MAX));
       candidates_.clear();
       for (auto c = by_centre_.begin(); c != end; ++c) {
-        const auto j = static_cast<std::uint32_t>(*c);
-        if (j != i) candidates_.push_back(key((points_[j] - p).squaredNorm(), j));
+        const auto j = key_index(*c);
+        if (j != i) candidates_.push_back(ordered_key((points_[j] - p).squaredNorm(), j));
       }
-      if (candidates_.size() >= k_ && std::sqrt(squared(smallest(k_))) <= sure) return found_;
+      if (candidates_.size() >= k_ && std::sqrt(key_value(smallest(k_))) <= sure) return found_;
     }
     tree_.knn_of_point(i, k_, found_, distances_);
     return found_;
@@ -99,10 +98,10 @@ class GroupNeighbours {
   /// all of them (a quarter of a noisy CAD part's draw).
   std::uint64_t smallest(std::size_t k) {
     float largest = 0;
-    for (const std::uint64_t c : candidates_) largest = std::max(largest, squared(c));
+    for (const std::uint64_t c : candidates_) largest = std::max(largest, key_value(c));
     const float per_ring = largest > 0 ? 255.f / largest : 0.f;
     const auto ring = [&](std::uint64_t c) {
-      const float r = squared(c) * per_ring;
+      const float r = key_value(c) * per_ring;
       return r >= 0 ? std::min(255, static_cast<int>(r)) : 0;  // NaN (a point at NaN): ring 0, never converted
     };
     std::array<std::uint32_t, 256> count{};
@@ -114,12 +113,12 @@ class GroupNeighbours {
     edge_.clear();
     for (const std::uint64_t c : candidates_) {
       const int r = ring(c);
-      if (r < last) found_.push_back(static_cast<std::uint32_t>(c));
+      if (r < last) found_.push_back(key_index(c));
       if (r == last) edge_.push_back(c);
     }
     const std::size_t need = k - below;
     std::nth_element(edge_.begin(), edge_.begin() + static_cast<std::ptrdiff_t>(need - 1), edge_.end());
-    for (std::size_t m = 0; m < need; ++m) found_.push_back(static_cast<std::uint32_t>(edge_[m]));
+    for (std::size_t m = 0; m < need; ++m) found_.push_back(key_index(edge_[m]));
     return edge_[need - 1];
   }
 

@@ -12,6 +12,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/ordered_key.h"
 #include "core/parallel_chunks.h"
 #include "morton.h"
 
@@ -19,6 +20,9 @@ namespace pcsketch::neighbourhood::detail {
 namespace {
 
 using Cell = std::array<std::uint32_t, 3>;
+using pcsketch::detail::key_index;
+using pcsketch::detail::key_value;
+using pcsketch::detail::ordered_key;
 
 /// Inverse of spread_bits: the bits at every third place, packed.
 std::uint32_t compact_bits(std::uint64_t v) {
@@ -39,7 +43,8 @@ struct Frame {
     Cell c;
     for (int a = 0; a < 3; ++a) {
       const double t = (double(p[a]) - lo[a]) / edge;
-      c[static_cast<std::size_t>(a)] = static_cast<std::uint32_t>(t >= 0 ? std::min(std::floor(t), double(kMortonMax)) : 0);
+      c[static_cast<std::size_t>(a)] =
+          static_cast<std::uint32_t>(t >= 0 ? std::min(std::floor(t), double(kMortonMax)) : 0);
     }
     return c;
   }
@@ -49,16 +54,10 @@ struct Frame {
   }
 };
 
-struct Keyed {
-  std::uint64_t code;
-  std::uint32_t index;
-  bool operator<(const Keyed& o) const { return code < o.code || (code == o.code && index < o.index); }
-};
-
-/// Every point's code and index, sorted: cells are runs, in Morton order. Keys are unique (the index breaks ties), so
-/// the parallel sort is deterministic; already sorted (a spatially reordered cloud at the finest level) costs one pass.
-std::vector<Keyed> sorted_codes(const std::vector<Vec3f>& points, const Frame& frame) {
-  std::vector<Keyed> keyed(points.size());
+/// Every point's code and index, sorted (an already sorted array, a spatially reordered cloud at the finest level,
+/// costs one pass).
+std::vector<MortonKeyed> sorted_codes(const std::vector<Vec3f>& points, const Frame& frame) {
+  std::vector<MortonKeyed> keyed(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const auto& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) keyed[i] = {frame.code_of(points[i]), std::uint32_t(i)};
   });
@@ -73,7 +72,7 @@ std::vector<Keyed> sorted_codes(const std::vector<Vec3f>& points, const Frame& f
 double cell_edge(const std::vector<Vec3f>& points, const Box3f& box, double target) {
   const double side = box.size().maxCoeff();
   const Frame finest{box.min.cast<double>(), side / kMortonMax};
-  const std::vector<Keyed> keyed = sorted_codes(points, finest);
+  const std::vector<MortonKeyed> keyed = sorted_codes(points, finest);
   std::array<double, kMortonBits + 2> above{};  // above[j]: neighbours in different cells of level j
   for (std::size_t i = 1; i < keyed.size(); ++i) {
     const std::uint64_t x = keyed[i].code ^ keyed[i - 1].code;
@@ -99,7 +98,7 @@ struct Grid {
   int shift = 64;
 
   Grid(const std::vector<Vec3f>& points, const Frame& f) : frame(f) {
-    const std::vector<Keyed> keyed = sorted_codes(points, f);
+    const std::vector<MortonKeyed> keyed = sorted_codes(points, f);
     order.resize(keyed.size());
     for (std::size_t r = 0; r < keyed.size(); ++r) {
       order[r] = keyed[r].index;
@@ -137,7 +136,6 @@ inline float squared(float dx, float dy, float dz) {
   d += dz * dz;
   return d;
 }
-inline float squared(const Vec3f& q, const Vec3f& p) { return squared(q.x() - p.x(), q.y() - p.y(), q.z() - p.z()); }
 
 /// The 27 cell offsets, nearest first (the cell itself, faces, edges, corners): near candidates come first and fill
 /// the k best early, so that later ones mostly fail the first compare.
@@ -173,7 +171,7 @@ struct Candidates {
       for (std::uint32_t r = grid.start[std::size_t(other)]; r < grid.start[std::size_t(other) + 1]; ++r) {
         const Vec3f& p = points[grid.order[r]];
         x.push_back(p.x()), y.push_back(p.y()), z.push_back(p.z());
-        index.push_back(static_cast<std::uint32_t>(grid.order[r]));
+        index.push_back(grid.order[r]);
       }
     }
   }
@@ -192,7 +190,7 @@ struct Candidates {
     keys.resize(count + 1);
     std::size_t within = 0;
     for (std::size_t c = 0; c < count; ++c) {
-      keys[within] = std::uint64_t{std::bit_cast<std::uint32_t>(d2[c])} << 32 | index[c];
+      keys[within] = ordered_key(d2[c], index[c]);
       within += d2[c] <= bound && index[c] != i;
     }
     if (within < k) return false;
@@ -230,33 +228,36 @@ std::vector<std::uint32_t> grid_knn(const std::vector<Vec3f>& points, std::size_
     const Grid grid(points, Frame{box.min.cast<double>(), cell_edge(points, box, 0.5 * double(k + 1))});
     // A cell crowded far beyond its share (many copies of one point) would make its rows quadratic: the tree's.
     const std::size_t most = 64 * (k + 1);
-    pcsketch::detail::parallel_chunks(grid.cells(), progress, "neighbourhoods", [&](std::size_t begin, std::size_t end) {
-      thread_local Candidates cand;
-      for (std::size_t cell = begin; cell < end; ++cell) {
-        cand.gather(grid, points, cell);
-        if (cand.index.size() > most) continue;
-        // The previous point's k-th distance plus the step to this one bounds this one's (triangle inequality:
-        // its k nearest, with the previous point itself in place of this one, are all that close).
-        float reach = INFINITY;
-        Vec3f previous = Vec3f::Zero();
-        for (std::uint32_t r = grid.start[cell]; r < grid.start[cell + 1]; ++r) {
-          const auto i = static_cast<std::uint32_t>(grid.order[r]);
-          const float bound = (reach + (points[i] - previous).norm()) * (1 + 1e-5f);
-          reach = INFINITY;
-          if (!cand.nearest(points[i], i, k, bound * bound) && !cand.nearest(points[i], i, k, INFINITY)) continue;
-          const float kth = std::sqrt(std::bit_cast<float>(std::uint32_t(cand.keys[k - 1] >> 32)));
-          reach = kth;
-          previous = points[i];
-          // A margin far above float rounding: a point outside the 27 cells can neither be nearer nor tie.
-          if (!(double(kth) < way_out(grid.frame, points[i], cand.centre) * (1 - 1e-5))) continue;
-          for (std::size_t m = 0; m < k; ++m) {
-            indices[i * k + m] = static_cast<std::uint32_t>(cand.keys[m]);
-            distances[i * k + m] = std::sqrt(std::bit_cast<float>(std::uint32_t(cand.keys[m] >> 32)));
+    pcsketch::detail::parallel_chunks(
+        grid.cells(), progress, "neighbourhoods",
+        [&](std::size_t begin, std::size_t end) {
+          thread_local Candidates cand;
+          for (std::size_t cell = begin; cell < end; ++cell) {
+            cand.gather(grid, points, cell);
+            if (cand.index.size() > most) continue;
+            // The previous point's k-th distance plus the step to this one bounds this one's (triangle inequality:
+            // its k nearest, with the previous point itself in place of this one, are all that close).
+            float reach = INFINITY;
+            Vec3f previous = Vec3f::Zero();
+            for (std::uint32_t r = grid.start[cell]; r < grid.start[cell + 1]; ++r) {
+              const std::uint32_t i = grid.order[r];
+              const float bound = (reach + (points[i] - previous).norm()) * (1 + 1e-5f);
+              reach = INFINITY;
+              if (!cand.nearest(points[i], i, k, bound * bound) && !cand.nearest(points[i], i, k, INFINITY)) continue;
+              const float kth = std::sqrt(key_value(cand.keys[k - 1]));
+              reach = kth;
+              previous = points[i];
+              // A margin far above float rounding: a point outside the 27 cells can neither be nearer nor tie.
+              if (!(double(kth) < way_out(grid.frame, points[i], cand.centre) * (1 - 1e-5))) continue;
+              for (std::size_t m = 0; m < k; ++m) {
+                indices[i * k + m] = key_index(cand.keys[m]);
+                distances[i * k + m] = std::sqrt(key_value(cand.keys[m]));
+              }
+              left[i] = 0;
+            }
           }
-          left[i] = 0;
-        }
-      }
-    }, 16);
+        },
+        16);
   }
   std::vector<std::uint32_t> rest;
   for (std::uint32_t i = 0; i < n; ++i)

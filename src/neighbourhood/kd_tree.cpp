@@ -1,11 +1,11 @@
 #include "pcsketch/neighbourhood/kd_tree.h"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <nanoflann.hpp>
 
+#include "core/ordered_key.h"
 #include "pcsketch/core/error.h"
 
 namespace pcsketch::neighbourhood {
@@ -30,14 +30,12 @@ using Index = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<f
 /// with incrementally rounded box distances, so a point at exactly the bound could otherwise be skipped.
 float widened(float dist_sq) { return dist_sq * (1.f + 1e-6f) + std::numeric_limits<float>::denorm_min(); }
 
-/// (squared distance, index) packed so that one unsigned compare orders them lexicographically (squared distances
-/// are never negative, and non-negative floats order like their bits; NaN distances are never offered, nanoflann
-/// testing dist < worstDist() first): ties come out in index order whatever the traversal order.
+/// (squared distance, index) as one ordered key (NaN distances are never offered, nanoflann testing
+/// dist < worstDist() first): ties come out in index order whatever the traversal order.
 using Candidate = std::uint64_t;
-Candidate candidate(float dist_sq, std::uint32_t index) {
-  return static_cast<Candidate>(std::bit_cast<std::uint32_t>(dist_sq)) << 32 | index;
-}
-float squared_distance(Candidate c) { return std::bit_cast<float>(static_cast<std::uint32_t>(c >> 32)); }
+using pcsketch::detail::key_index;
+using pcsketch::detail::key_value;
+using pcsketch::detail::ordered_key;
 
 /// The k smallest candidates, kept sorted by insertion (fast for small k). worstDist() is widened so that a
 /// candidate tied with the current worst is still offered and may win on its index.
@@ -47,12 +45,12 @@ class SortedKnn {
   bool full() const { return count_ == capacity_; }
   float worstDist() const { return worst_; }
   bool addPoint(float dist, std::uint32_t index) {
-    const Candidate c = candidate(dist, index);
+    const Candidate c = ordered_key(dist, index);
     if (full() && c >= out_[capacity_ - 1]) return true;
     std::size_t m = count_ < capacity_ ? count_++ : capacity_ - 1;
     for (; m > 0 && c < out_[m - 1]; --m) out_[m] = out_[m - 1];
     out_[m] = c;
-    if (full()) worst_ = widened(squared_distance(out_[capacity_ - 1]));
+    if (full()) worst_ = widened(key_value(out_[capacity_ - 1]));
     return true;
   }
   void finish() {}
@@ -71,7 +69,7 @@ class HeapKnn {
   bool full() const { return count_ == capacity_; }
   float worstDist() const { return worst_; }
   bool addPoint(float dist, std::uint32_t index) {
-    const Candidate c = candidate(dist, index);
+    const Candidate c = ordered_key(dist, index);
     if (!full()) {
       out_[count_++] = c;
       std::push_heap(out_, out_ + count_);
@@ -80,7 +78,7 @@ class HeapKnn {
     } else {
       return true;
     }
-    if (full()) worst_ = widened(squared_distance(out_[0]));
+    if (full()) worst_ = widened(key_value(out_[0]));
     return true;
   }
   void finish() { std::sort(out_, out_ + count_); }
@@ -165,8 +163,8 @@ void KdTree::knn(const Vec3f& query, std::size_t k, std::vector<std::uint32_t>& 
     search(HeapKnn(k, found.data()));
   }
   for (std::size_t m = 0; m < k; ++m) {
-    distances[m] = std::sqrt(squared_distance(found[m]));
-    indices[m] = static_cast<std::uint32_t>(found[m]);
+    distances[m] = std::sqrt(key_value(found[m]));
+    indices[m] = key_index(found[m]);
   }
 }
 

@@ -26,4 +26,12 @@ inline std::uint64_t morton(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
   return spread_bits(x) | spread_bits(y) << 1 | spread_bits(z) << 2;
 }
 
+/// A point's code with its index: sorted, cells are runs in Morton order, and the keys are unique (the index breaks
+/// ties), so a parallel sort is deterministic.
+struct MortonKeyed {
+  std::uint64_t code;
+  std::uint32_t index;
+  bool operator<(const MortonKeyed& o) const { return code < o.code || (code == o.code && index < o.index); }
+};
+
 }  // namespace pcsketch::neighbourhood::detail

@@ -27,16 +27,19 @@ Neighbourhoods sized(const std::vector<Vec3f>& points, const NeighbourhoodOption
 /// The rows of `rest` from the tree.
 void fill_from_tree(const KdTree& tree, const std::vector<std::uint32_t>& rest, Neighbourhoods& result) {
   const std::size_t k = result.k;
-  pcsketch::detail::parallel_chunks(rest.size(), {}, "neighbourhoods", [&](std::size_t begin, std::size_t end) {
-    thread_local std::vector<std::uint32_t> found;
-    thread_local std::vector<float> found_distances;
-    for (std::size_t r = begin; r < end; ++r) {
-      const std::size_t i = rest[r];
-      tree.knn_of_point(i, k, found, found_distances);
-      std::copy(found.begin(), found.end(), result.indices.begin() + std::ptrdiff_t(i * k));
-      std::copy(found_distances.begin(), found_distances.end(), result.distances.begin() + std::ptrdiff_t(i * k));
-    }
-  }, 64);
+  pcsketch::detail::parallel_chunks(
+      rest.size(), {}, "neighbourhoods",
+      [&](std::size_t begin, std::size_t end) {
+        thread_local std::vector<std::uint32_t> found;
+        thread_local std::vector<float> found_distances;
+        for (std::size_t r = begin; r < end; ++r) {
+          const std::size_t i = rest[r];
+          tree.knn_of_point(i, k, found, found_distances);
+          std::copy(found.begin(), found.end(), result.indices.begin() + std::ptrdiff_t(i * k));
+          std::copy(found_distances.begin(), found_distances.end(), result.distances.begin() + std::ptrdiff_t(i * k));
+        }
+      },
+      64);
 }
 
 }  // namespace

@@ -13,15 +13,7 @@
 
 namespace pcsketch::neighbourhood {
 
-namespace {
-
-struct Keyed {
-  std::uint64_t code;
-  std::uint32_t index;
-  bool operator<(const Keyed& o) const { return code < o.code || (code == o.code && index < o.index); }
-};
-
-}  // namespace
+using detail::MortonKeyed;
 
 std::vector<std::uint32_t> spatial_order(const std::vector<Vec3f>& points) {
   const std::size_t n = points.size();
@@ -31,7 +23,7 @@ std::vector<std::uint32_t> spatial_order(const std::vector<Vec3f>& points) {
   // One cubic grid of 2^21 cells per axis over the largest side keeps the curve isotropic.
   const float side = box.empty() ? 0.f : box.size().maxCoeff();
   const float scale = side > 0 ? static_cast<float>(detail::kMortonMax) / side : 0.f;
-  std::vector<Keyed> keyed(n);
+  std::vector<MortonKeyed> keyed(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) {
       std::array<std::uint32_t, 3> cell;

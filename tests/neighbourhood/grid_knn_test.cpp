@@ -10,10 +10,10 @@
 #include <numbers>
 #include <random>
 
+#include "nanoflann_metric.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
 #include "pcsketch/neighbourhood/neighbourhoods.h"
 #include "pcsketch/neighbourhood/spatial_order.h"
-#include "nanoflann_metric.h"
 
 namespace pcsketch::neighbourhood {
 namespace {

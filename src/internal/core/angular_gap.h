@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "ordered_key.h"
 #include "pcsketch/core/point_cloud.h"
 
 namespace pcsketch::detail {
@@ -80,12 +81,12 @@ inline bool gap_exceeds(std::span<const Vec2f> dirs, float threshold) {
   thread_local std::vector<std::uint64_t> order;
   order.resize(dirs.size());
   for (std::size_t i = 0; i < dirs.size(); ++i)
-    order[i] = std::uint64_t{std::bit_cast<std::uint32_t>(pseudo_angle(dirs[i]))} << 32 | i;  // angles ≥ 0: bits order
+    order[i] = ordered_key(pseudo_angle(dirs[i]), static_cast<std::uint32_t>(i));  // pseudo-angles are ≥ 0
   std::sort(order.begin(), order.end());
   const float cos_t = std::cos(threshold);
   for (std::size_t i = 0; i < order.size(); ++i) {
-    const Vec2f& a = dirs[static_cast<std::uint32_t>(order[i])];
-    const Vec2f& b = dirs[static_cast<std::uint32_t>(order[(i + 1) % order.size()])];
+    const Vec2f& a = dirs[key_index(order[i])];
+    const Vec2f& b = dirs[key_index(order[(i + 1) % order.size()])];
     const float cross = a.x() * b.y() - a.y() * b.x();
     const float dot_bound = cos_t * a.norm() * b.norm();
     // The counter-clockwise angle from a to b is over 180° where cross < 0; its cosine falls over [0°, 180°] and
