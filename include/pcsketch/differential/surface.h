@@ -54,7 +54,9 @@ struct Surface {
   bool normals_estimated = false;  ///< normals come from PCA (not from the file)
   bool denoised = false;           ///< the points were moved by denoise() (the noise exceeded its trigger)
   float input_noise = 0;           ///< σ̂ of the cloud as read, model units (0 when denoising is off)
-  float normal_noise = 0;          ///< angular noise of the final normals, radians (differential::normal_noise)
+  /// Angular noise of the final normals, radians: differential::normal_noise, capped by the tilt σ̂ can explain
+  /// (0.25 rad per σ̂/h) when σ̂ was estimated, so that a sparse cloud's bending is not taken for noise.
+  float normal_noise = 0;
   std::size_t components = 0;      ///< connected components found by the orientation (0 if it did not run)
   SurfaceTimings timings;
   Warnings warnings;
