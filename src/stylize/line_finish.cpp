@@ -7,8 +7,8 @@ namespace pcsketch::stylize {
 
 namespace {
 
-/// Vertices that do not move: the ends of an open line and the image's corners (local minima of the bend angle
-/// below the corner angle).
+/// Vertices that do not move: the ends of an open line, the image's corners (local minima of the bend angle below
+/// the corner angle) and the samples of a sparse line (both segments over 1.5 corner arms).
 std::vector<std::uint8_t> pinned_vertices(const Polyline& line, const view::Camera& camera, const FinishOptions& o) {
   const std::size_t n = line.size();
   std::vector<Vec2f> image(n);
@@ -16,6 +16,8 @@ std::vector<std::uint8_t> pinned_vertices(const Polyline& line, const view::Came
   // Sparse lines (a coarse mesh's vertices, 15–20 px apart) need an arm of a few segments to see past their steps.
   std::vector<float> segment;
   for (std::size_t i = 0; i + 1 < n; ++i) segment.push_back((image[i + 1] - image[i]).norm());
+  // Image length of the segment from vertex i % n to the next (the closing one included).
+  const auto segment_at = [&](std::size_t i) { return (image[(i + 1) % n] - image[i % n]).norm(); };
   std::nth_element(segment.begin(), segment.begin() + static_cast<std::ptrdiff_t>(segment.size() / 2), segment.end());
   const float arm = std::max(o.corner_arm_px, 2.f * segment[segment.size() / 2]);
   const std::vector<float> bend = bend_angles_deg(line, image, arm);
@@ -23,7 +25,11 @@ std::vector<std::uint8_t> pinned_vertices(const Polyline& line, const view::Came
   for (std::size_t i = 0; i < n; ++i) {
     const bool end = !line.closed && (i == 0 || i + 1 == n);
     const float before = bend[(i + n - 1) % n], after = bend[(i + 1) % n];
-    pinned[i] = end || (bend[i] < o.corner_angle_deg && bend[i] <= before && bend[i] <= after);
+    // A bend between segments over 1.5 arms (12 px; a coarse cloud's outline, 10–20 px apart) is the shape drawn
+    // at that sample: smoothed, the vertex clouds' lines left the mesh's rims (contour P and R 0.01–0.06 lower over
+    // 3 views of 5 clouds). The stairs of a traced crease step by about a spacing, under 9 px, and are smoothed.
+    const bool sparse = !end && std::min(segment_at(i + n - 1), segment_at(i)) > 1.5f * o.corner_arm_px;
+    pinned[i] = end || sparse || (bend[i] < o.corner_angle_deg && bend[i] <= before && bend[i] <= after);
   }
   return pinned;
 }

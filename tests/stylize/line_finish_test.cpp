@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace pcsketch::stylize {
 namespace {
@@ -58,6 +59,26 @@ TEST(LineFinish, SmoothingFlattensAStaircase) {
   EXPECT_TRUE(smooth.points.back().isApprox(stairs.points.back()));
 }
 
+TEST(LineFinish, SparseLinesKeepTheirSamples) {
+  // A circle of radius 1 through 40 vertices (about 70 px apart at this framing), one in two pushed out by 2%: the
+  // bumps are the shape sampled at those vertices (a coarse cloud's outline), not a zigzag under the pen.
+  Polyline ring;
+  ring.closed = true;
+  for (int k = 0; k < 40; ++k) {
+    const float a = 2 * std::numbers::pi_v<float> * static_cast<float>(k) / 40.f, r = k % 2 ? 1.02f : 1.f;
+    ring.points.emplace_back(r * std::cos(a), r * std::sin(a), 0.f);
+  }
+  EXPECT_EQ(smooth_line(ring, camera_for(ring.points)).points, ring.points);
+  // The same bumps 4 px apart are smoothed (the stairs of a dense trace).
+  Polyline dense = ring;
+  for (Vec3f& p : dense.points) p *= 0.05f;
+  dense.points.push_back(Vec3f(-2, -2, 0));  // frames the small ring at the same scale
+  dense.points.push_back(Vec3f(2, 2, 0));
+  const view::Camera cam = camera_for(dense.points);
+  dense.points.resize(40);
+  EXPECT_NE(smooth_line(dense, cam).points, dense.points);
+}
+
 TEST(LineFinish, SmoothingOffLeavesTheLine) {
   Polyline l;
   l.points = {{0, 0, 0}, {1, 0.3f, 0}, {2, -0.2f, 0}, {3, 0, 0}};
@@ -79,7 +100,7 @@ TEST(LineFinish, LinesSeenOverAFewPixelsAreLeftOut) {
   StrokesResult r;
   // Line 0 seen over 2 px, line 1 hidden, line 2 over 50 px, line 3 over 4.9 px, line 4 over two runs of 3 px,
   // line 5 over 3 px starting 2 px past the end of line 2 (its continuation).
-  r.strokes = {stroke(0, 0, 2, true),  stroke(0, 20, 2, false), stroke(0, 40, 50, true), stroke(0, 60, 4.9f, true),
+  r.strokes = {stroke(0, 0, 2, true),  stroke(0, 20, 2, false),  stroke(0, 40, 50, true), stroke(0, 60, 4.9f, true),
                stroke(0, 80, 3, true), stroke(3, 80, 40, false), stroke(43, 80, 3, true), stroke(52, 40, 3, true)};
   r.line = {0, 1, 2, 3, 4, 4, 4, 5};
   EXPECT_EQ(drop_short_strokes(r), 2u);  // default 5 px

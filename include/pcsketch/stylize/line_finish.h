@@ -20,7 +20,9 @@ struct FinishOptions {
   /// when longer) is sharper than this is a corner and does not move, degrees (180 = straight). 135: a cube's or a
   /// fandisk's corners (about 90°–120° in the image) stay, a staircase (nearly straight at that scale) is smoothed.
   float corner_angle_deg = 135.f;
-  float corner_arm_px = 8.f;  ///< arm of the corner test, px (about three pen widths)
+  /// Arm of the corner test, px (about three pen widths). A vertex whose two segments both exceed 1.5 arms is a
+  /// sample of a sparse line (a coarse cloud's outline) and keeps its place too.
+  float corner_arm_px = 8.f;
   /// Lines seen over less than this (the image length of their visible runs together) are left out, px: a pen only
   /// dabs on them (1 mm is about 5 px at 1024 px on a 200 mm page). Hidden runs and hatching are kept as they are.
   float min_length_px = 5.f;
@@ -29,9 +31,10 @@ struct FinishOptions {
   float join_px = 10.f;
 };
 
-/// `line` smoothed in place of its vertices (same count, same order, same per-point data): open ends and corners
-/// stay, the vertices between them move toward their neighbours by `options.smooth_passes` Taubin passes in 3D.
-/// Corners are found in the image of `camera`, so the drawing keeps the corners it shows.
+/// `line` smoothed in place of its vertices (same count, same order, same per-point data): open ends, corners and
+/// the vertices of sparse stretches stay, the vertices between them move toward their neighbours by
+/// `options.smooth_passes` Taubin passes in 3D. Corners are found in the image of `camera`, so the drawing keeps the
+/// corners it shows.
 Polyline smooth_line(const Polyline& line, const view::Camera& camera, const FinishOptions& options = {});
 
 /// Leaves out the visible strokes of every line whose visible strokes are shorter than `options.min_length_px`
