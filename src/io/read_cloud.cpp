@@ -186,7 +186,7 @@ void check_normals(RawCloud& raw, ReadResult& result, const Source& source) {
 }
 
 // The thinning asked for: --voxel and --max-points, and the resolution rule for a file of more points than its
-// budget (a format read whole; binary PLY is thinned while streamed, by the same rule).
+// budget (a format read whole; binary PLY, LAS, binary PCD and XYZ are thinned while streamed, by the same rule).
 void thin(ReadResult& result, const DecimateOptions& options) {
   PointCloud& cloud = result.cloud;
   DecimateOptions d = options;
@@ -302,6 +302,8 @@ Mesh read_mesh_from_memory(std::string_view bytes, const std::string& name_hint,
 }
 
 namespace detail {
+bool reads_as_xyz(const Source& source) { return choose_reader(source).parse == parse_xyz; }
+
 // Recentre far-away clouds on a whole-unit origin; keep origin 0 for clouds around the world origin, where float
 // positions lose nothing worth keeping (at most 4 bits against a centred cloud).
 Vec3d choose_origin(const Vec3d& lo, const Vec3d& hi, const ReadOptions& options) {

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -130,6 +131,25 @@ inline std::string make_ply(const std::vector<PlyElem>& elements, Layout layout,
       }
       if (layout == Layout::Ascii) out.back() = '\n';
     }
+  }
+  return out;
+}
+
+/// A point of a noisy sphere: unit direction (the normal) and radius about 1.
+struct SpherePoint {
+  Vec3d direction;
+  double radius;
+};
+
+/// `n` points of a noisy unit sphere (Gaussian directions, radius 1 + 0.01 N(0, 1)), seeded: the same every run.
+inline std::vector<SpherePoint> noisy_sphere(std::size_t n) {
+  std::mt19937 mt(42);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::vector<SpherePoint> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3d d(g(mt), g(mt), g(mt));
+    d.normalize();
+    out.push_back({d, 1.0 + 0.01 * g(mt)});
   }
   return out;
 }

@@ -22,16 +22,14 @@ using test::PlyElem;
 // `n` points on a noisy sphere of radius 1 around `centre`, unit normals, colours, and every 97th point NaN.
 std::string sphere_ply(std::size_t n, Layout layout, const std::string& type = "float", double centre = 0.0,
                        bool with_nan = true) {
-  std::mt19937 mt(42);
-  std::normal_distribution<double> g(0.0, 1.0);
   PlyElem vertex{"vertex",
                  {{type, "x"}, {type, "y"}, {type, "z"}, {"float", "nx"}, {"float", "ny"}, {"float", "nz"},
                   {"uchar", "red"}, {"uchar", "green"}, {"uchar", "blue"}, {"float", "quality"}},
                  {}};
+  const std::vector<test::SpherePoint> sphere = test::noisy_sphere(n);
   for (std::size_t i = 0; i < n; ++i) {
-    Vec3d d(g(mt), g(mt), g(mt));
-    d.normalize();
-    const double r = 1.0 + 0.01 * g(mt);
+    const Vec3d& d = sphere[i].direction;
+    const double r = sphere[i].radius;
     const double x = with_nan && i % 97 == 5 ? std::numeric_limits<double>::quiet_NaN() : centre + r * d.x();
     vertex.rows.push_back({x, centre + r * d.y(), centre + r * d.z(), d.x(), d.y(), d.z(), double(i % 256),
                            double(i / 256 % 256), 7.0, double(i)});
