@@ -56,10 +56,10 @@ class CellTable {
 
   std::size_t size() const { return size_; }
 
-  /// The representatives in file order: positions, and normals / colours / intensity when the table keeps them; returns their
-  /// file indices (ascending), for the formats that read more of the kept points back from their records.
-  std::vector<std::uint64_t> take(std::vector<Vec3f>& positions, std::vector<Vec3f>& normals,
-                                  std::vector<Rgb8>& colors, std::vector<float>* intensity = nullptr) const {
+  /// The representatives in file order: positions, and normals / colours / intensity when the table keeps them; returns
+  /// their file indices (ascending), for the formats that read more of the kept points back from their records.
+  std::vector<std::uint64_t> take(std::vector<Vec3f>& positions, std::vector<Vec3f>& normals, std::vector<Rgb8>& colors,
+                                  std::vector<float>* intensity = nullptr) const {
     // (file index, slot) pairs sort without chasing the table.
     std::vector<std::pair<std::uint64_t, std::uint32_t>> order;
     order.reserve(size_);
@@ -71,8 +71,8 @@ class CellTable {
     for (std::size_t i = 0; i < order.size(); ++i) std::tie(indices[i], used[i]) = order[i];
     order = {};
     positions.reserve(used.size());
-    for (const std::uint32_t s : used) positions.emplace_back(entries_[s].position[0], entries_[s].position[1],
-                                                               entries_[s].position[2]);
+    for (const std::uint32_t s : used)
+      positions.emplace_back(entries_[s].position[0], entries_[s].position[1], entries_[s].position[2]);
     if (normals_)
       for (const std::uint32_t s : used) normals.push_back(normals_of_[s]);
     if (colors_)

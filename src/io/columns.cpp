@@ -116,8 +116,8 @@ constexpr std::array<std::size_t, 3> kUnitGroups{0, 1, 3};
 
 // What the three columns from `first` (0-based after x y z) of every row hold.
 Group classify(const ColumnStats& stats, std::size_t first, double& unit_share) {
-  const std::size_t g = static_cast<std::size_t>(std::find(kUnitGroups.begin(), kUnitGroups.end(), first) -
-                                                 kUnitGroups.begin());
+  const std::size_t g =
+      static_cast<std::size_t>(std::find(kUnitGroups.begin(), kUnitGroups.end(), first) - kUnitGroups.begin());
   bool bytes = true, unit_range = true;
   for (std::size_t c = 3 + first; c < 6 + first; ++c) {
     bytes = bytes && stats.bytes[c];
@@ -146,7 +146,8 @@ void ColumnStats::add(const float* row) {
   }
   for (std::size_t g = 0; g < kUnitGroups.size(); ++g) {
     const std::size_t first = 3 + kUnitGroups[g];
-    if (first + 3 <= width && std::abs(Vec3f(row[first], row[first + 1], row[first + 2]).norm() - 1.f) <= kUnitTolerance)
+    if (first + 3 <= width &&
+        std::abs(Vec3f(row[first], row[first + 1], row[first + 2]).norm() - 1.f) <= kUnitTolerance)
       ++unit[g];
   }
 }

@@ -77,8 +77,9 @@ const Reader& choose_reader(const Source& source) {
           0, std::string(r.name) + ": wrong magic: the file starts with \"" + printable_head(source.bytes) + "\"");
     return r;
   }
-  source.fail("unknown format: extension " + quote(ext) + " is none of .ply .las .off .pcd .obj .xyz .pts .txt .csv .asc" +
-              " and the first bytes \"" + printable_head(source.bytes) + "\" are no known magic");
+  source.fail("unknown format: extension " + quote(ext) +
+              " is none of .ply .las .off .pcd .obj .xyz .pts .txt .csv .asc" + " and the first bytes \"" +
+              printable_head(source.bytes) + "\" are no known magic");
 }
 
 // Lowest and highest corner of the bounding box of a non-empty set.
@@ -198,7 +199,8 @@ void thin(ReadResult& result, const DecimateOptions& options) {
     const double cell = resolution_cell(*d.resolution, detail::robust_extent(std::move(sample)));
     if (cell > d.voxel.value_or(0.0)) {
       d.voxel = cell;
-      reason = detail::resolution_reason(*d.resolution, result.points_in_file) + (d.max_points ? ", then --max-points" : "");
+      reason =
+          detail::resolution_reason(*d.resolution, result.points_in_file) + (d.max_points ? ", then --max-points" : "");
     }
   }
   if (!d.active()) return;

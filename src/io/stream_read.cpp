@@ -1,16 +1,16 @@
-// Streamed read with voxel thinning (binary PLY, LAS, binary PCD, the XYZ family): two passes over the mapped file, never a whole
-// RawCloud. The first finds the bounding box (and the robust box for the resolution rule), the second keeps per
-// occupied cell the point nearest its centre in a hash map. The rule, the grid and the tie-breaks are decimate()'s,
-// computed on the same float positions, so the kept points are exactly those of the in-memory read followed by
-// decimate().
+// Streamed read with voxel thinning (binary PLY, LAS, binary PCD, the XYZ family): two passes over the mapped file,
+// never a whole RawCloud. The first finds the bounding box (and the robust box for the resolution rule), the second
+// keeps per occupied cell the point nearest its centre in a hash map. The rule, the grid and the tie-breaks are
+// decimate()'s, computed on the same float positions, so the kept points are exactly those of the in-memory read
+// followed by decimate().
 
 #include <sys/mman.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <tuple>
 
 #include "cell_table.h"
@@ -74,7 +74,12 @@ class Voxeliser final : public PointSink {
  public:
   Voxeliser(const ReadOptions& options, const Vec3d& origin, const Vec3d& lo, double cell, std::uint64_t count,
             bool normals, bool colors, bool intensity, const ProgressReporter& report)
-      : cells(normals, colors, intensity), options_(options), origin_(origin), lo_(lo), cell_(cell), count_(count),
+      : cells(normals, colors, intensity),
+        options_(options),
+        origin_(origin),
+        lo_(lo),
+        cell_(cell),
+        count_(count),
         report_(report) {}
 
   void points(const PointChunk& c) override {
@@ -154,8 +159,7 @@ void check_survey(const Survey& s, const StreamHeader& header, const ReadOptions
                   const Source& source) {
   if (header.count == 0) source.fail(header.format + ": the file holds no points");
   if (s.non_finite == header.count)
-    source.fail(header.format + ": all " + std::to_string(header.count) +
-                " points have a NaN or infinite coordinate");
+    source.fail(header.format + ": all " + std::to_string(header.count) + " points have a NaN or infinite coordinate");
   if (s.non_finite > 0)
     result.warnings.push_back(source.path + ": dropped " + std::to_string(s.non_finite) + " of " +
                               std::to_string(header.count) + " points with a NaN or infinite coordinate");

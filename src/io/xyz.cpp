@@ -49,7 +49,8 @@ std::string xyz_format(const std::string& path) {
 }
 
 XyzRows::XyzRows(const Source& source)
-    : src_(source), layout_{{source.columns.begin(), source.columns.end()}, {}, source.columns.empty() ? "" : "--columns"},
+    : src_(source),
+      layout_{{source.columns.begin(), source.columns.end()}, {}, source.columns.empty() ? "" : "--columns"},
       lines_(skip_bom(source.bytes), 1, source.path) {}
 
 // Whether `line` holds a row; a comment may hide a header (CloudCompare writes "//X,Y,Z,R,G,B").
@@ -155,9 +156,7 @@ double colour_scale(const ColumnStats& stats, const XyzFields& fields) {
   return unit_range && !whole ? 255.0 : 1.0;
 }
 
-std::string describe(const XyzLayout& layout) {
-  return columns_to_string(layout.columns) + " (" + layout.how + ")";
-}
+std::string describe(const XyzLayout& layout) { return columns_to_string(layout.columns) + " (" + layout.how + ")"; }
 
 void guess_layout(XyzLayout& layout, const ColumnStats& stats, const std::string& format, const std::string& path,
                   Warnings& warnings) {

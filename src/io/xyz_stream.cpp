@@ -49,7 +49,9 @@ struct XyzState {
 // The chunks' buffers; the second pass fills normals, colours and intensity when the layout has them.
 struct XyzChunk {
   XyzChunk(std::size_t n, const XyzFields* f)
-      : positions(n), normals(f && f->has_normals ? n : 0), colors(f && f->has_colors ? n : 0),
+      : positions(n),
+        normals(f && f->has_normals ? n : 0),
+        colors(f && f->has_colors ? n : 0),
         intensity(f && f->intensity < f->width ? n : 0) {}
   std::vector<Vec3d> positions;
   std::vector<Vec3f> normals;

@@ -17,6 +17,8 @@
 
 #include "pcsketch/core/error.h"
 #include "pcsketch/core/point_cloud.h"
+#include "pcsketch/io/decimate.h"
+#include "pcsketch/io/read_cloud.h"
 
 namespace pcsketch::test {
 
@@ -166,6 +168,24 @@ inline void expect_same_cloud(const PointCloud& a, const PointCloud& b) {
     EXPECT_EQ(a.attributes[k].name, b.attributes[k].name);
     EXPECT_EQ(a.attributes[k].values, b.attributes[k].values) << a.attributes[k].name;
   }
+}
+
+/// The resolution rule on `bytes` (over 1000 points) read as `name`: within the default budget, read as before
+/// (no thinning); over a budget of 1000, streamed, with the points of the whole read then decimate() by the same cell.
+/// Returns the streamed read.
+inline io::ReadResult expect_budget_rule(const std::string& bytes, const std::string& name) {
+  io::ReadOptions options;
+  options.decimate.resolution = io::OutputResolution{};  // 2,097,152 points: far above the test clouds
+  const io::ReadResult within = io::read_point_cloud_from_memory(bytes, name, options);
+  EXPECT_FALSE(within.decimation.has_value());
+  io::ReadResult whole = io::read_point_cloud_from_memory(bytes, name);
+  expect_same_cloud(within.cloud, whole.cloud);
+  options.decimate.resolution = io::OutputResolution{.width = 40, .height = 40, .budget_points = 1000};
+  io::ReadResult over = io::read_point_cloud_from_memory(bytes, name, options);
+  EXPECT_TRUE(over.decimation.has_value() && over.decimation->streamed);
+  if (over.decimation) io::decimate(whole.cloud, {.voxel = over.decimation->cell});
+  expect_same_cloud(over.cloud, whole.cloud);
+  return over;
 }
 
 /// Each of `inputs`, read as `name` by `read(bytes, name, thinned)`, fails with one message naming the file and a

@@ -72,16 +72,7 @@ TEST(PcdStream, VoxelKeepsThePointsOfTheInMemoryReadForAnyChunk) {
 
 TEST(PcdStream, BudgetAndOtherLayouts) {
   const std::string bytes = sphere_pcd(6000);
-  ReadOptions options;
-  options.decimate.resolution = OutputResolution{};  // far above 6000 points: read as before
-  const ReadResult within = read_point_cloud_from_memory(bytes, "s.pcd", options);
-  EXPECT_FALSE(within.decimation.has_value());
-  expect_same_cloud(within.cloud, read_point_cloud_from_memory(bytes, "s.pcd").cloud);
-  options.decimate.resolution = OutputResolution{.width = 40, .height = 40, .budget_points = 1000};
-  const ReadResult over = read_point_cloud_from_memory(bytes, "s.pcd", options);
-  ASSERT_TRUE(over.decimation.has_value());
-  EXPECT_TRUE(over.decimation->streamed);
-  expect_same_cloud(over.cloud, whole_then_decimate(bytes, {.voxel = over.decimation->cell}));
+  test::expect_budget_rule(bytes, "s.pcd");
   // ascii PCD is read whole, then thinned by the same rule.
   const std::string ascii =
       "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 3\nPOINTS 3\nDATA ascii\n0 0 0\n1 0 0\n0.01 0 0\n";

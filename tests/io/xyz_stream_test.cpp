@@ -35,9 +35,16 @@ std::string sphere_text(std::size_t n, const TextLayout& l, double centre = 0.0)
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3d& d = sphere[i].direction;
     const Vec3d p = Vec3d::Constant(centre) + sphere[i].radius * d;
-    const std::array<double, 10> values{i % 89 == 3 ? std::nan("") : p.x(), p.y(), p.z(), d.x(), d.y(), d.z(),
-                                        double(i % 256) * l.colour_scale, double(i / 256 % 256) * l.colour_scale,
-                                        7 * l.colour_scale, double(i % 1000)};
+    const std::array<double, 10> values{i % 89 == 3 ? std::nan("") : p.x(),
+                                        p.y(),
+                                        p.z(),
+                                        d.x(),
+                                        d.y(),
+                                        d.z(),
+                                        double(i % 256) * l.colour_scale,
+                                        double(i / 256 % 256) * l.colour_scale,
+                                        7 * l.colour_scale,
+                                        double(i % 1000)};
     for (std::size_t c = 0; c < l.columns; ++c) out += (c ? l.sep : "") + text_of(values[c]);
     out += i % 3 ? "\n" : "\r\n";
     if (l.comments && i % 50 == 0) out += "# a comment\n\n" + l.sep + l.sep + "\n";
@@ -86,8 +93,8 @@ TEST(XyzStream, EveryLayoutKeepsThePointsOfTheWholeReadForAnyChunk) {
     expect_as_whole_read(sphere_text(3000, layout), name, {});
   }
   // --columns, with the header row skipped; far from the origin.
-  const std::vector<Column> columns{Column::X, Column::Y, Column::Z, Column::Skip, Column::Skip, Column::Skip,
-                                    Column::Red, Column::Green, Column::Blue, Column::Intensity};
+  const std::vector<Column> columns{Column::X,    Column::Y,   Column::Z,     Column::Skip, Column::Skip,
+                                    Column::Skip, Column::Red, Column::Green, Column::Blue, Column::Intensity};
   expect_as_whole_read(sphere_text(3000, {.header = "a b c d e f g h i j\n", .columns = 10}, 512345.0), "cols.xyz",
                        {.columns = columns});
 }
@@ -100,24 +107,15 @@ TEST(XyzStream, CropAndNormalsOffAsInTheWholeRead) {
 
 TEST(XyzStream, BudgetDecidedOnTheExactCount) {
   const std::string bytes = sphere_text(3000, {});
-  ReadOptions options;
-  options.decimate.resolution = OutputResolution{};  // far above 3000 points: read as before
-  const ReadResult within = read_point_cloud_from_memory(bytes, "s.xyz", options);
-  EXPECT_FALSE(within.decimation.has_value());
-  expect_same_cloud(within.cloud, read_point_cloud_from_memory(bytes, "s.xyz").cloud);
-  options.decimate.resolution = OutputResolution{.width = 40, .height = 40, .budget_points = 1000};
-  const ReadResult over = read_point_cloud_from_memory(bytes, "s.xyz", options);
+  const ReadResult over = test::expect_budget_rule(bytes, "s.xyz");
   ASSERT_TRUE(over.decimation.has_value());
-  EXPECT_TRUE(over.decimation->streamed);
   EXPECT_NE(over.decimation->reason.find("3000 points, over the 1000 budget"), std::string::npos)
       << over.decimation->reason;
-  ReadResult whole = read_point_cloud_from_memory(bytes, "s.xyz");
-  decimate(whole.cloud, {.voxel = over.decimation->cell});
-  expect_same_cloud(over.cloud, whole.cloud);
   // A short first row makes the estimate about 15000 rows (the file size over 18 bytes); the first pass counts 3001,
   // within a budget of 4000: read as before.
   const std::string short_first = "0 0 0 0 0 1 0 0 0\n" + bytes;
-  options.decimate.resolution->budget_points = 4000;
+  ReadOptions options;
+  options.decimate.resolution = OutputResolution{.width = 40, .height = 40, .budget_points = 4000};
   const ReadResult counted = read_point_cloud_from_memory(short_first, "s.xyz", options);
   EXPECT_FALSE(counted.decimation.has_value());
   expect_same_cloud(counted.cloud, read_point_cloud_from_memory(short_first, "s.xyz").cloud);
@@ -134,8 +132,16 @@ TEST(XyzStream, MalformedFilesFailAsInTheWholeRead) {
   word.insert(line_start(200) + 2, "x");
   shorter.insert(line_start(150), "1 2\n");
   longer.insert(line_start(250), "1 2 3 4 5 6 7 8 9 10\n");
-  const std::vector<std::string> hostile{word, shorter, longer, "1 2\n3 4\n", "x y\n1 2 3\n", "# only\n\n",
-                                         "nan 0 0\n0 nan 0\n", "1 2 3\n4 5 1e999\n", "\xEF\xBB\xBF" "1 2 3\n4 5\n"};
+  const std::vector<std::string> hostile{word,
+                                         shorter,
+                                         longer,
+                                         "1 2\n3 4\n",
+                                         "x y\n1 2 3\n",
+                                         "# only\n\n",
+                                         "nan 0 0\n0 nan 0\n",
+                                         "1 2 3\n4 5 1e999\n",
+                                         "\xEF\xBB\xBF"
+                                         "1 2 3\n4 5\n"};
   test::expect_same_errors(hostile, "bad.xyz", [](const std::string& bytes, const std::string& name, bool thinned) {
     read_point_cloud_from_memory(bytes, name, {.decimate = {.voxel = thinned ? std::optional(0.1) : std::nullopt}});
   });
