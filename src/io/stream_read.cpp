@@ -225,7 +225,7 @@ std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t 
 
 std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions& options, std::size_t chunk_points) {
   const DecimateOptions& d = options.decimate;
-  if (!d.voxel && !d.resolution) return std::nullopt;  // no thinning asked for: no header to read twice
+  if (!d.voxel && !d.resolution) return std::nullopt;  // no thinning asked for: the whole read, headers unread
   // Each streaming reader recognises its own magic; another format or layout is read whole.
   std::optional<StreamHeader> header = ply_stream_header(source);
   if (!header) header = las_stream_header(source);
