@@ -21,7 +21,11 @@ class CellTable {
   /// Largest cell index along an axis (grids finer than this are thinned in memory instead).
   static constexpr double kMaxIndex = 1 << 30;
 
-  CellTable(bool normals, bool colors) : normals_(normals), colors_(colors) { resize(1 << 16); }
+  /// `intensity`: the table keeps one float per cell too (the XYZ family's intensity column).
+  CellTable(bool normals, bool colors, bool intensity = false)
+      : normals_(normals), colors_(colors), intensity_(intensity) {
+    resize(1 << 16);
+  }
 
   /// Grows the table now so that `more` offers cannot move it (the slots prefetch() touched stay valid).
   void reserve_for(std::size_t more) {
@@ -32,7 +36,7 @@ class CellTable {
 
   /// A candidate for cell `key`; it replaces the cell's representative when nearer its centre (ties as above).
   void offer(const Key& key, double distance2, const std::array<float, 3>& position, std::uint64_t index,
-             const Vec3f& normal, const Rgb8& color) {
+             const Vec3f& normal, const Rgb8& color, float intensity = 0.f) {
     reserve_for(1);
     std::size_t s = slot(key);
     Entry& e = entries_[s];
@@ -47,14 +51,15 @@ class CellTable {
     e.index = index;
     if (normals_) normals_of_[s] = normal;
     if (colors_) colors_of_[s] = color;
+    if (intensity_) intensity_of_[s] = intensity;
   }
 
   std::size_t size() const { return size_; }
 
-  /// The representatives in file order: positions, and normals / colours when the table keeps them; returns their
-  /// file indices (ascending), for the formats that read more of the kept points back from their records.
-  std::vector<std::uint64_t> take(std::vector<Vec3f>& positions, std::vector<Vec3f>& normals,
-                                  std::vector<Rgb8>& colors) const {
+  /// The representatives in file order: positions, and normals / colours / intensity when the table keeps them; returns
+  /// their file indices (ascending), for the formats that read more of the kept points back from their records.
+  std::vector<std::uint64_t> take(std::vector<Vec3f>& positions, std::vector<Vec3f>& normals, std::vector<Rgb8>& colors,
+                                  std::vector<float>* intensity = nullptr) const {
     // (file index, slot) pairs sort without chasing the table.
     std::vector<std::pair<std::uint64_t, std::uint32_t>> order;
     order.reserve(size_);
@@ -66,12 +71,14 @@ class CellTable {
     for (std::size_t i = 0; i < order.size(); ++i) std::tie(indices[i], used[i]) = order[i];
     order = {};
     positions.reserve(used.size());
-    for (const std::uint32_t s : used) positions.emplace_back(entries_[s].position[0], entries_[s].position[1],
-                                                               entries_[s].position[2]);
+    for (const std::uint32_t s : used)
+      positions.emplace_back(entries_[s].position[0], entries_[s].position[1], entries_[s].position[2]);
     if (normals_)
       for (const std::uint32_t s : used) normals.push_back(normals_of_[s]);
     if (colors_)
       for (const std::uint32_t s : used) colors.push_back(colors_of_[s]);
+    if (intensity_ && intensity != nullptr)
+      for (const std::uint32_t s : used) intensity->push_back(intensity_of_[s]);
     return indices;
   }
 
@@ -106,24 +113,28 @@ class CellTable {
     const std::size_t old_capacity = capacity_;
     std::vector<Vec3f> old_normals = std::move(normals_of_);
     std::vector<Rgb8> old_colors = std::move(colors_of_);
+    std::vector<float> old_intensity = std::move(intensity_of_);
     entries_.assign(capacity, Entry{});
     capacity_ = capacity;
     if (normals_) normals_of_.assign(capacity, Vec3f::Zero());
     if (colors_) colors_of_.assign(capacity, Rgb8{});
+    if (intensity_) intensity_of_.assign(capacity, 0.f);
     for (std::size_t i = 0; i < old_capacity; ++i) {
       if (old[i].index == kEmpty) continue;
       const std::size_t s = slot(old[i].key);
       entries_[s] = old[i];
       if (normals_) normals_of_[s] = old_normals[i];
       if (colors_) colors_of_[s] = old_colors[i];
+      if (intensity_) intensity_of_[s] = old_intensity[i];
     }
   }
 
-  bool normals_, colors_;
+  bool normals_, colors_, intensity_;
   std::vector<Entry> entries_;
   std::size_t capacity_ = 0;  ///< a power of two
   std::vector<Vec3f> normals_of_;
   std::vector<Rgb8> colors_of_;
+  std::vector<float> intensity_of_;
   std::size_t size_ = 0;
 };
 

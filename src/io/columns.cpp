@@ -111,21 +111,20 @@ namespace {
 
 enum class Group : std::uint8_t { Normals, Colours, Neither };
 
-// What the three columns from `first` (0-based after x y z) of every row hold; `values` has `stride` per row.
-Group classify(std::span<const float> values, std::size_t stride, std::size_t first, double& unit_share) {
-  const std::size_t rows = values.size() / stride;
-  std::size_t unit = 0;
+// The three unit-vector counts of ColumnStats::unit: groups from 3 + 0, 3 + 1 and 3 + 3.
+constexpr std::array<std::size_t, 3> kUnitGroups{0, 1, 3};
+
+// What the three columns from `first` (0-based after x y z) of every row hold.
+Group classify(const ColumnStats& stats, std::size_t first, double& unit_share) {
+  const std::size_t g =
+      static_cast<std::size_t>(std::find(kUnitGroups.begin(), kUnitGroups.end(), first) - kUnitGroups.begin());
   bool bytes = true, unit_range = true;
-  for (std::size_t r = 0; r < rows; ++r) {
-    const float* row = values.data() + r * stride + 3 + first;
-    const Vec3f v(row[0], row[1], row[2]);
-    if (std::abs(v.norm() - 1.f) <= kUnitTolerance) ++unit;
-    for (const float x : v) {
-      bytes = bytes && x >= 0.f && x <= 255.f && x == std::floor(x);
-      unit_range = unit_range && x >= 0.f && x <= 1.f;
-    }
+  for (std::size_t c = 3 + first; c < 6 + first; ++c) {
+    bytes = bytes && stats.bytes[c];
+    unit_range = unit_range && stats.unit_range[c];
   }
-  unit_share = rows == 0 ? 0.0 : static_cast<double>(unit) / static_cast<double>(rows);
+  const std::uint64_t rows = stats.rows;
+  unit_share = rows == 0 ? 0.0 : static_cast<double>(stats.unit[g]) / static_cast<double>(rows);
   // Unit vectors first: axis-aligned normals (0 0 1) are small integers too.
   if (rows > 0 && unit_share >= kUnitShare) return Group::Normals;
   if (bytes || unit_range) return Group::Colours;
@@ -136,11 +135,34 @@ std::string share_text(double share) { return std::to_string(static_cast<int>(st
 
 }  // namespace
 
+void ColumnStats::add(const float* row) {
+  ++rows;
+  for (std::size_t c = 0; c < width; ++c) {
+    const float x = row[c];
+    const bool integer = x == std::floor(x);
+    bytes[c] = bytes[c] && x >= 0.f && x <= 255.f && integer;
+    unit_range[c] = unit_range[c] && x >= 0.f && x <= 1.f;
+    whole[c] = whole[c] && integer;
+  }
+  for (std::size_t g = 0; g < kUnitGroups.size(); ++g) {
+    const std::size_t first = 3 + kUnitGroups[g];
+    if (first + 3 <= width &&
+        std::abs(Vec3f(row[first], row[first + 1], row[first + 2]).norm() - 1.f) <= kUnitTolerance)
+      ++unit[g];
+  }
+}
+
 std::vector<Column> guess_columns(std::span<const float> values, std::size_t width, bool pts, const std::string& path,
                                   Warnings& warnings) {
+  ColumnStats stats(width);
+  for (std::size_t r = 0; r + width <= values.size() && width > 0; r += width) stats.add(values.data() + r);
+  return guess_columns(stats, pts, path, warnings);
+}
+
+std::vector<Column> guess_columns(const ColumnStats& stats, bool pts, const std::string& path, Warnings& warnings) {
+  const std::size_t width = stats.width;
   std::vector<Column> columns(std::max<std::size_t>(width, 3), Column::Skip);
   for (std::size_t c = 0; c < 3; ++c) columns[c] = static_cast<Column>(c);
-  const std::size_t stride = width;
   const auto set_group = [&](std::size_t first, Column a, Column b, Column c) {
     columns[first + 3] = a;
     columns[first + 4] = b;
@@ -158,10 +180,10 @@ std::vector<Column> guess_columns(std::span<const float> values, std::size_t wid
   if (width >= 9) groups.push_back(3);
   for (const std::size_t first : groups) {
     double share = 0;
-    Group g = classify(values, stride, first, share);
+    Group g = classify(stats, first, share);
     if (width == 7 && g != Group::Normals) {
       double shifted_share = 0;
-      if (classify(values, stride, 1, shifted_share) == Group::Colours) {
+      if (classify(stats, 1, shifted_share) == Group::Colours) {
         columns[3] = Column::Intensity;
         set_group(1, Column::Red, Column::Green, Column::Blue);
         continue;

@@ -2,7 +2,9 @@
 // What the columns of a text file hold: --columns lists, header names, and the guess from the values when neither
 // is given (so that `x y z r g b` is never read as normals).
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -33,12 +35,30 @@ std::string_view column_name(Column c);
 /// A header row: the columns its names give (unknown names are Skip), or nullopt unless it names x, y and z.
 std::optional<std::vector<Column>> columns_from_header(std::span<const std::string_view> names);
 
-/// The columns of a file without --columns or header, from the values of its first `width` columns: x y z, then
-/// for `.pts` intensity [r g b]; otherwise each group of three after x y z (columns 4-6, 7-9; or 5-7 after an
+/// What the layout guess and the colour scale need from the values of a text file, gathered row by row (one pass of
+/// a streamed read, no table).
+struct ColumnStats {
+  explicit ColumnStats(std::size_t columns)
+      : width(columns), bytes(columns, 1), unit_range(columns, 1), whole(columns, 1) {}
+  /// Adds one row of `width` values.
+  void add(const float* row);
+
+  std::size_t width;
+  std::uint64_t rows = 0;
+  /// Per column, 1 while every value is an integer in 0-255 / lies in [0, 1] / is whole.
+  std::vector<std::uint8_t> bytes, unit_range, whole;
+  /// Rows whose three columns from 3 + first are a unit vector (kUnitTolerance), for first = 0, 1 and 3.
+  std::array<std::uint64_t, 3> unit{};
+};
+
+/// The columns of a file without --columns or header, from the statistics of its first `stats.width` columns: x y
+/// z, then for `.pts` intensity [r g b]; otherwise each group of three after x y z (columns 4-6, 7-9; or 5-7 after an
 /// intensity in 7-column files) is normals if unit length at kUnitShare of the rows, colour if every value is an
 /// integer in 0-255 or lies in [0, 1], else skipped with a warning saying so and how to override it.
-/// @param[in] values  #rows by `width`, row-major: the values of the first `width` columns (1-3 are not looked at)
-/// @return `width` columns
+/// @return `stats.width` columns
+std::vector<Column> guess_columns(const ColumnStats& stats, bool pts, const std::string& path, Warnings& warnings);
+
+/// The same from the values: #rows by `width`, row-major (columns 1-3 are not looked at).
 std::vector<Column> guess_columns(std::span<const float> values, std::size_t width, bool pts, const std::string& path,
                                   Warnings& warnings);
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -24,7 +25,8 @@ struct StreamHeader {
   std::string format;
   std::vector<std::string> other_attributes;
   /// Hands every point to `sink` in file order, `chunk_points` at a time (stream_ply, stream_las).
-  void (*stream)(const Source& source, std::size_t chunk_points, PointSink& sink) = nullptr;
+  /// A text format's may keep what its first pass learnt (the layout) for the next.
+  std::function<void(const Source& source, std::size_t chunk_points, PointSink& sink)> stream;
   /// Formats with fixed-size records (LAS): the chunks carry positions and classes only; after thinning, this reads
   /// the colours (when `colors`) and the attributes of the kept points (ascending file indices) from their records.
   /// `colour_max`: the largest colour channel in the file (PointChunk::colour_max). nullptr: the chunks carry the
@@ -32,6 +34,13 @@ struct StreamHeader {
   void (*read_kept)(const Source& source, std::span<const std::uint64_t> kept, std::uint16_t colour_max, bool colors,
                     PointCloud& cloud) = nullptr;
   bool has_classes = false;  ///< the chunks carry a classification per point (--classes, --drop-classes)
+  /// Text formats (XYZ): the count above is an estimate for the budget decision, and the layout is known only once
+  /// every row was read. Called after the first pass with the points it saw: sets the exact count, has_normals,
+  /// has_colors, has_intensity, other_attributes, columns and warnings. nullptr: the header is exact.
+  std::function<void(StreamHeader& header, std::uint64_t points)> surveyed;
+  bool has_intensity = false;  ///< the chunks carry an intensity per point (kept as the "intensity" attribute)
+  std::string columns;         ///< text formats: ReadResult::columns
+  Warnings warnings;           ///< what the reader assumed (a guessed layout), before the read's own warnings
 };
 
 /// One chunk of consecutive points; `normals`, `colors` and `classes` are empty when the chunks carry none.
@@ -41,6 +50,7 @@ struct PointChunk {
   std::span<const Vec3f> normals;
   std::span<const Rgb8> colors;
   std::span<const std::uint8_t> classes;  ///< LAS: the classification of each point
+  std::span<const float> intensity;       ///< XYZ: the intensity column
   std::uint16_t colour_max = 0;           ///< LAS: the largest colour channel of the chunk's records (16-bit or 8-bit?)
 };
 
@@ -87,10 +97,10 @@ Vec3d robust_extent(std::vector<Vec3d> sample);
 /// Why the resolution rule thinned a file of `count` points ("2097152 points budget for a 1024x1024 image, …").
 std::string resolution_reason(const OutputResolution& resolution, std::uint64_t count);
 
-/// Streaming readers (binary PLY, LAS and binary PCD; compressed or ascii PCD, XYZ and the text formats are read
-/// whole). The header of a file the reader can stream, or nullopt (another format or layout); throws the reader's
-/// error for a malformed header or a count the file cannot hold. stream_ply() / stream_las() / stream_pcd() then hand
-/// every point to `sink`, `chunk_points` at a time; when `source.mapped`, the pages already read are released
+/// Streaming readers (binary PLY, LAS, binary PCD and the XYZ family; compressed or ascii PCD, ascii PLY, OFF and OBJ
+/// are read whole). The header of a file the reader can stream, or nullopt (another format or layout); throws the
+/// reader's error for a malformed header or a count the file cannot hold. stream_ply() / stream_las() / stream_pcd()
+/// then hand every point to `sink`, `chunk_points` at a time; when `source.mapped`, the pages already read are released
 /// (madvise) so that the mapping does not stay resident. las_read_kept() is LAS's StreamHeader::read_kept.
 std::optional<StreamHeader> ply_stream_header(const Source& source);
 std::optional<std::uint64_t> ply_header_count(const Source& source);  ///< any PLY layout; nullopt: not PLY
@@ -100,6 +110,11 @@ void stream_las(const Source& source, std::size_t chunk_points, PointSink& sink)
 std::optional<StreamHeader> pcd_stream_header(const Source& source);
 void stream_pcd(const Source& source, std::size_t chunk_points, PointSink& sink);
 std::optional<std::uint64_t> pcd_header_count(const Source& source);  ///< any PCD layout; nullopt: not PCD
+/// The XYZ family: the header of a file read as XYZ (by its extension, no other magic), its count estimated from the
+/// file size (docs/io.md); StreamHeader::surveyed completes it after the first pass.
+std::optional<StreamHeader> xyz_stream_header(const Source& source);
+/// Whether the whole read would read `source` as the XYZ family (throws its error for an empty or unknown file).
+bool reads_as_xyz(const Source& source);
 void las_read_kept(const Source& source, std::span<const std::uint64_t> kept, std::uint16_t colour_max, bool colors,
                    PointCloud& cloud);
 

@@ -77,8 +77,9 @@ const Reader& choose_reader(const Source& source) {
           0, std::string(r.name) + ": wrong magic: the file starts with \"" + printable_head(source.bytes) + "\"");
     return r;
   }
-  source.fail("unknown format: extension " + quote(ext) + " is none of .ply .las .off .pcd .obj .xyz .pts .txt .csv .asc" +
-              " and the first bytes \"" + printable_head(source.bytes) + "\" are no known magic");
+  source.fail("unknown format: extension " + quote(ext) +
+              " is none of .ply .las .off .pcd .obj .xyz .pts .txt .csv .asc" + " and the first bytes \"" +
+              printable_head(source.bytes) + "\" are no known magic");
 }
 
 // Lowest and highest corner of the bounding box of a non-empty set.
@@ -186,7 +187,7 @@ void check_normals(RawCloud& raw, ReadResult& result, const Source& source) {
 }
 
 // The thinning asked for: --voxel and --max-points, and the resolution rule for a file of more points than its
-// budget (a format read whole; binary PLY is thinned while streamed, by the same rule).
+// budget (a format read whole; binary PLY, LAS, binary PCD and XYZ are thinned while streamed, by the same rule).
 void thin(ReadResult& result, const DecimateOptions& options) {
   PointCloud& cloud = result.cloud;
   DecimateOptions d = options;
@@ -198,7 +199,8 @@ void thin(ReadResult& result, const DecimateOptions& options) {
     const double cell = resolution_cell(*d.resolution, detail::robust_extent(std::move(sample)));
     if (cell > d.voxel.value_or(0.0)) {
       d.voxel = cell;
-      reason = detail::resolution_reason(*d.resolution, result.points_in_file) + (d.max_points ? ", then --max-points" : "");
+      reason =
+          detail::resolution_reason(*d.resolution, result.points_in_file) + (d.max_points ? ", then --max-points" : "");
     }
   }
   if (!d.active()) return;
@@ -302,6 +304,8 @@ Mesh read_mesh_from_memory(std::string_view bytes, const std::string& name_hint,
 }
 
 namespace detail {
+bool reads_as_xyz(const Source& source) { return choose_reader(source).parse == parse_xyz; }
+
 // Recentre far-away clouds on a whole-unit origin; keep origin 0 for clouds around the world origin, where float
 // positions lose nothing worth keeping (at most 4 bits against a centred cloud).
 Vec3d choose_origin(const Vec3d& lo, const Vec3d& hi, const ReadOptions& options) {

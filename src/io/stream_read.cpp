@@ -1,16 +1,16 @@
-// Streamed read with voxel thinning (binary PLY, LAS, binary PCD): two passes over the mapped file, never a whole
-// RawCloud. The first finds the bounding box (and the robust box for the resolution rule), the second keeps per
-// occupied cell the point nearest its centre in a hash map. The rule, the grid and the tie-breaks are decimate()'s,
-// computed on the same float positions, so the kept points are exactly those of the in-memory read followed by
-// decimate().
+// Streamed read with voxel thinning (binary PLY, LAS, binary PCD, the XYZ family): two passes over the mapped file,
+// never a whole RawCloud. The first finds the bounding box (and the robust box for the resolution rule), the second
+// keeps per occupied cell the point nearest its centre in a hash map. The rule, the grid and the tie-breaks are
+// decimate()'s, computed on the same float positions, so the kept points are exactly those of the in-memory read
+// followed by decimate().
 
 #include <sys/mman.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <tuple>
 
 #include "cell_table.h"
@@ -28,7 +28,7 @@ bool filtered_in(const ReadOptions& options, const PointChunk& c, std::size_t i)
          ((p.array() >= options.crop->min.array()).all() && (p.array() <= options.crop->max.array()).all());
 }
 
-/// Pass 1: counts, bounding box, normal statistics and a sample of positions.
+/// Pass 1: counts, bounding box and a sample of positions.
 class Survey final : public PointSink {
  public:
   Survey(const ReadOptions& options, std::uint64_t count, const ProgressReporter& report)
@@ -49,17 +49,15 @@ class Survey final : public PointSink {
       lo = kept == 0 ? p : lo.cwiseMin(p);
       hi = kept == 0 ? p : hi.cwiseMax(p);
       ++kept;
-      if (!c.normals.empty()) {
-        const Vec3f& n = c.normals[i];
-        bad_normals += !(n.allFinite() && n.norm() > 0.f);
-        unit_normals += std::abs(n.norm() - 1.f) <= kUnitTolerance;
-      }
       if ((c.first + i) % stride_ == 0) sample.push_back(p);
     }
-    report_(0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_));
+    seen = c.first + c.positions.size();
+    // A text format's count is an estimate: the fraction may overrun.
+    report_(std::min(0.5, 0.5 * static_cast<double>(seen) / static_cast<double>(count_)));
   }
 
-  std::uint64_t non_finite = 0, filtered = 0, kept = 0, bad_normals = 0, unit_normals = 0;
+  std::uint64_t seen = 0;  ///< points handed over
+  std::uint64_t non_finite = 0, filtered = 0, kept = 0;
   std::uint16_t colour_max = 0;  ///< PointChunk::colour_max over the file
   Vec3d lo = Vec3d::Zero(), hi = Vec3d::Zero();
   std::vector<Vec3d> sample;
@@ -70,12 +68,18 @@ class Survey final : public PointSink {
   const ProgressReporter& report_;
 };
 
-/// Pass 2: per occupied cell, the candidate decimate() would keep.
+/// Pass 2: per occupied cell, the candidate decimate() would keep; the normals' statistics (of the points pass 1
+/// kept: the whole read checks them after the filters).
 class Voxeliser final : public PointSink {
  public:
   Voxeliser(const ReadOptions& options, const Vec3d& origin, const Vec3d& lo, double cell, std::uint64_t count,
-            bool normals, bool colors, const ProgressReporter& report)
-      : cells(normals, colors), options_(options), origin_(origin), lo_(lo), cell_(cell), count_(count),
+            bool normals, bool colors, bool intensity, const ProgressReporter& report)
+      : cells(normals, colors, intensity),
+        options_(options),
+        origin_(origin),
+        lo_(lo),
+        cell_(cell),
+        count_(count),
         report_(report) {}
 
   void points(const PointChunk& c) override {
@@ -91,14 +95,20 @@ class Voxeliser final : public PointSink {
       for (std::size_t k = 0; k < n; ++k) cells.prefetch(batch[k].key);
       for (std::size_t k = 0; k < n; ++k) {
         const std::size_t i = static_cast<std::size_t>(batch[k].index - c.first);
-        cells.offer(batch[k].key, batch[k].distance2, batch[k].position, batch[k].index,
-                    c.normals.empty() ? Vec3f::Zero() : c.normals[i], c.colors.empty() ? Rgb8{} : c.colors[i]);
+        const Vec3f normal = c.normals.empty() ? Vec3f::Zero() : c.normals[i];
+        if (!c.normals.empty()) {
+          bad_normals += !(normal.allFinite() && normal.norm() > 0.f);
+          unit_normals += std::abs(normal.norm() - 1.f) <= kUnitTolerance;
+        }
+        cells.offer(batch[k].key, batch[k].distance2, batch[k].position, batch[k].index, normal,
+                    c.colors.empty() ? Rgb8{} : c.colors[i], c.intensity.empty() ? 0.f : c.intensity[i]);
       }
     }
-    report_(0.5 + 0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_));
+    report_(std::min(1.0, 0.5 + 0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_)));
   }
 
   CellTable cells;
+  std::uint64_t bad_normals = 0, unit_normals = 0;
 
  private:
   struct Candidate {
@@ -128,14 +138,14 @@ class Voxeliser final : public PointSink {
   const ProgressReporter& report_;
 };
 
-// check_normals() of the in-memory read, from the survey's counts.
-bool normals_usable(const Survey& s, ReadResult& result, const Source& source) {
+// check_normals() of the in-memory read, from pass 2's counts over the `kept` points.
+bool normals_usable(const Voxeliser& s, std::uint64_t kept, ReadResult& result, const Source& source) {
   if (s.bad_normals > 0) {
     result.warnings.push_back(source.path + ": " + std::to_string(s.bad_normals) +
                               " normals are zero or not finite; normals ignored");
     return false;
   }
-  const double unit = static_cast<double>(s.unit_normals) / static_cast<double>(s.kept);
+  const double unit = static_cast<double>(s.unit_normals) / static_cast<double>(kept);
   if (unit < kUnitShare) {
     result.warnings.push_back(source.path + ": the file's normals are not unit vectors (only " +
                               std::to_string(static_cast<int>(unit * 100.0)) +
@@ -149,8 +159,7 @@ void check_survey(const Survey& s, const StreamHeader& header, const ReadOptions
                   const Source& source) {
   if (header.count == 0) source.fail(header.format + ": the file holds no points");
   if (s.non_finite == header.count)
-    source.fail(header.format + ": all " + std::to_string(header.count) +
-                " points have a NaN or infinite coordinate");
+    source.fail(header.format + ": all " + std::to_string(header.count) + " points have a NaN or infinite coordinate");
   if (s.non_finite > 0)
     result.warnings.push_back(source.path + ": dropped " + std::to_string(s.non_finite) + " of " +
                               std::to_string(header.count) + " points with a NaN or infinite coordinate");
@@ -216,14 +225,16 @@ std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t 
 
 std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions& options, std::size_t chunk_points) {
   const DecimateOptions& d = options.decimate;
+  if (!d.voxel && !d.resolution) return std::nullopt;  // no thinning asked for: the whole read, headers unread
   // Each streaming reader recognises its own magic; another format or layout is read whole.
   std::optional<StreamHeader> header = ply_stream_header(source);
   if (!header) header = las_stream_header(source);
   if (!header) header = pcd_stream_header(source);
+  if (!header) header = xyz_stream_header(source);
   if (!header) return std::nullopt;
   // Class filters on a file without classes: the whole read gives its error.
   if ((!options.classes.empty() || !options.drop_classes.empty()) && !header->has_classes) return std::nullopt;
-  const bool by_resolution = d.resolution && header->count > d.resolution->budget();
+  bool by_resolution = d.resolution && header->count > d.resolution->budget();
   if (!d.voxel && !by_resolution) return std::nullopt;
 
   const auto start = std::chrono::steady_clock::now();
@@ -231,7 +242,15 @@ std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions&
   report(0.0);
   Survey survey(options, header->count, report);
   header->stream(source, chunk_points, survey);
+  if (header->surveyed) {
+    header->surveyed(*header, survey.seen);
+    // The estimated count was too high: a cloud within the budget reads exactly as before.
+    by_resolution = d.resolution && header->count > d.resolution->budget();
+    if (!d.voxel && !by_resolution) return std::nullopt;
+  }
   ReadResult result;
+  result.warnings = header->warnings;
+  result.columns = header->columns;
   result.points_in_file = header->count;
   result.dropped_non_finite = survey.non_finite;
   result.dropped_by_filter = survey.filtered;
@@ -248,12 +267,15 @@ std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions&
   DecimateReport thinning = choose_cell(survey, d, by_resolution, header->count);
   // A grid of more than 2^30 cells a side (a --voxel far below the box): decimate() in memory has 64-bit cells.
   if (((survey.hi - survey.lo) / thinning.cell).maxCoeff() >= CellTable::kMaxIndex - 2) return std::nullopt;
-  const bool normals = header->has_normals && options.keep_normals && normals_usable(survey, result, source);
+  const bool normals = header->has_normals && options.keep_normals;
   const bool colors = header->has_colors && options.keep_colors;
   Voxeliser voxels(options, cloud.origin, lo.cast<double>(), thinning.cell, header->count, normals,
-                   colors && header->read_kept == nullptr, report);
+                   colors && header->read_kept == nullptr, header->has_intensity, report);
   header->stream(source, chunk_points, voxels);
-  const std::vector<std::uint64_t> kept = voxels.cells.take(cloud.positions, cloud.normals, cloud.colors);
+  std::vector<float> intensity;
+  const std::vector<std::uint64_t> kept = voxels.cells.take(cloud.positions, cloud.normals, cloud.colors, &intensity);
+  if (normals && !normals_usable(voxels, survey.kept, result, source)) cloud.normals.clear();
+  if (header->has_intensity) cloud.attributes.push_back({"intensity", std::move(intensity)});
   if (header->read_kept != nullptr) header->read_kept(source, kept, survey.colour_max, colors, cloud);
   for (Vec3f& n : cloud.normals) n.normalize();
   thinning.points_after = cloud.size();

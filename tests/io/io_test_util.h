@@ -11,11 +11,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "pcsketch/core/error.h"
 #include "pcsketch/core/point_cloud.h"
+#include "pcsketch/io/decimate.h"
+#include "pcsketch/io/read_cloud.h"
 
 namespace pcsketch::test {
 
@@ -134,6 +137,25 @@ inline std::string make_ply(const std::vector<PlyElem>& elements, Layout layout,
   return out;
 }
 
+/// A point of a noisy sphere: unit direction (the normal) and radius about 1.
+struct SpherePoint {
+  Vec3d direction;
+  double radius;
+};
+
+/// `n` points of a noisy unit sphere (Gaussian directions, radius 1 + 0.01 N(0, 1)), seeded: the same every run.
+inline std::vector<SpherePoint> noisy_sphere(std::size_t n) {
+  std::mt19937 mt(42);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::vector<SpherePoint> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3d d(g(mt), g(mt), g(mt));
+    d.normalize();
+    out.push_back({d, 1.0 + 0.01 * g(mt)});
+  }
+  return out;
+}
+
 /// Two clouds alike to the bit: origin, positions, normals, colours and every attribute (streamed against whole reads).
 inline void expect_same_cloud(const PointCloud& a, const PointCloud& b) {
   ASSERT_EQ(a.size(), b.size());
@@ -146,6 +168,24 @@ inline void expect_same_cloud(const PointCloud& a, const PointCloud& b) {
     EXPECT_EQ(a.attributes[k].name, b.attributes[k].name);
     EXPECT_EQ(a.attributes[k].values, b.attributes[k].values) << a.attributes[k].name;
   }
+}
+
+/// The resolution rule on `bytes` (over 1000 points) read as `name`: within the default budget, read as before
+/// (no thinning); over a budget of 1000, streamed, with the points of the whole read then decimate() by the same cell.
+/// Returns the streamed read.
+inline io::ReadResult expect_budget_rule(const std::string& bytes, const std::string& name) {
+  io::ReadOptions options;
+  options.decimate.resolution = io::OutputResolution{};  // 2,097,152 points: far above the test clouds
+  const io::ReadResult within = io::read_point_cloud_from_memory(bytes, name, options);
+  EXPECT_FALSE(within.decimation.has_value());
+  io::ReadResult whole = io::read_point_cloud_from_memory(bytes, name);
+  expect_same_cloud(within.cloud, whole.cloud);
+  options.decimate.resolution = io::OutputResolution{.width = 40, .height = 40, .budget_points = 1000};
+  io::ReadResult over = io::read_point_cloud_from_memory(bytes, name, options);
+  EXPECT_TRUE(over.decimation.has_value() && over.decimation->streamed);
+  if (over.decimation) io::decimate(whole.cloud, {.voxel = over.decimation->cell});
+  expect_same_cloud(over.cloud, whole.cloud);
+  return over;
 }
 
 /// Each of `inputs`, read as `name` by `read(bytes, name, thinned)`, fails with one message naming the file and a

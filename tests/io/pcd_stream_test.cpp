@@ -25,12 +25,10 @@ std::string sphere_pcd(std::size_t n, double centre = 0.0) {
       "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z normal_x normal_y normal_z rgb intensity\n"
       "SIZE 4 4 4 4 4 4 4 4\nTYPE F F F F F F F F\nCOUNT 1 1 1 1 1 1 1 1\nWIDTH " +
       std::to_string(n) + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + std::to_string(n) + "\nDATA binary\n";
-  std::mt19937 mt(42);
-  std::normal_distribution<double> g(0.0, 1.0);
+  const std::vector<test::SpherePoint> sphere = test::noisy_sphere(n);
   for (std::size_t i = 0; i < n; ++i) {
-    Vec3d d(g(mt), g(mt), g(mt));
-    d.normalize();
-    const double r = 1.0 + 0.01 * g(mt);
+    const Vec3d& d = sphere[i].direction;
+    const double r = sphere[i].radius;
     const float x = i % 89 == 3 ? std::numeric_limits<float>::quiet_NaN() : float(centre + r * d.x());
     const auto rgb = std::bit_cast<float>(std::uint32_t((i % 256) << 16 | (i / 256 % 256) << 8 | 7));
     for (const float v : {x, float(centre + r * d.y()), float(centre + r * d.z()), float(d.x()), float(d.y()),
@@ -74,16 +72,7 @@ TEST(PcdStream, VoxelKeepsThePointsOfTheInMemoryReadForAnyChunk) {
 
 TEST(PcdStream, BudgetAndOtherLayouts) {
   const std::string bytes = sphere_pcd(6000);
-  ReadOptions options;
-  options.decimate.resolution = OutputResolution{};  // far above 6000 points: read as before
-  const ReadResult within = read_point_cloud_from_memory(bytes, "s.pcd", options);
-  EXPECT_FALSE(within.decimation.has_value());
-  expect_same_cloud(within.cloud, read_point_cloud_from_memory(bytes, "s.pcd").cloud);
-  options.decimate.resolution = OutputResolution{.width = 40, .height = 40, .budget_points = 1000};
-  const ReadResult over = read_point_cloud_from_memory(bytes, "s.pcd", options);
-  ASSERT_TRUE(over.decimation.has_value());
-  EXPECT_TRUE(over.decimation->streamed);
-  expect_same_cloud(over.cloud, whole_then_decimate(bytes, {.voxel = over.decimation->cell}));
+  test::expect_budget_rule(bytes, "s.pcd");
   // ascii PCD is read whole, then thinned by the same rule.
   const std::string ascii =
       "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 3\nPOINTS 3\nDATA ascii\n0 0 0\n1 0 0\n0.01 0 0\n";

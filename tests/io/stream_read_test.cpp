@@ -14,24 +14,30 @@
 namespace pcsketch::io {
 namespace {
 
-using test::Layout;
 using test::expect_same_cloud;
+using test::Layout;
 using test::make_ply;
 using test::PlyElem;
 
 // `n` points on a noisy sphere of radius 1 around `centre`, unit normals, colours, and every 97th point NaN.
 std::string sphere_ply(std::size_t n, Layout layout, const std::string& type = "float", double centre = 0.0,
                        bool with_nan = true) {
-  std::mt19937 mt(42);
-  std::normal_distribution<double> g(0.0, 1.0);
   PlyElem vertex{"vertex",
-                 {{type, "x"}, {type, "y"}, {type, "z"}, {"float", "nx"}, {"float", "ny"}, {"float", "nz"},
-                  {"uchar", "red"}, {"uchar", "green"}, {"uchar", "blue"}, {"float", "quality"}},
+                 {{type, "x"},
+                  {type, "y"},
+                  {type, "z"},
+                  {"float", "nx"},
+                  {"float", "ny"},
+                  {"float", "nz"},
+                  {"uchar", "red"},
+                  {"uchar", "green"},
+                  {"uchar", "blue"},
+                  {"float", "quality"}},
                  {}};
+  const std::vector<test::SpherePoint> sphere = test::noisy_sphere(n);
   for (std::size_t i = 0; i < n; ++i) {
-    Vec3d d(g(mt), g(mt), g(mt));
-    d.normalize();
-    const double r = 1.0 + 0.01 * g(mt);
+    const Vec3d& d = sphere[i].direction;
+    const double r = sphere[i].radius;
     const double x = with_nan && i % 97 == 5 ? std::numeric_limits<double>::quiet_NaN() : centre + r * d.x();
     vertex.rows.push_back({x, centre + r * d.y(), centre + r * d.z(), d.x(), d.y(), d.z(), double(i % 256),
                            double(i / 256 % 256), 7.0, double(i)});
@@ -153,8 +159,7 @@ TEST(StreamRead, MalformedFilesStillFailWithTheByte) {
   const std::string good = sphere_ply(100, Layout::BinaryLE);
   // Cut inside the 60th vertex: the header's count no longer fits the bytes, refused before any point is read.
   const std::string cut = good.substr(0, good.size() - 40 * 27 - 5);
-  EXPECT_NE(test::error_of([&] { read_point_cloud_from_memory(cut, "cut.ply", options); })
-                .find("cut.ply (byte "),
+  EXPECT_NE(test::error_of([&] { read_point_cloud_from_memory(cut, "cut.ply", options); }).find("cut.ply (byte "),
             std::string::npos);
   std::string huge = good;
   huge.replace(huge.find("element vertex 100"), 18, "element vertex 1000000000000");
@@ -179,8 +184,7 @@ TEST(StreamRead, MappedFileGivesTheSamePoints) {
   ReadOptions options;
   options.decimate.voxel = 0.03;
   options.stream_chunk_points = 1000;  // pages released between chunks
-  expect_same_cloud(read_point_cloud(path, options).cloud,
-                    read_point_cloud_from_memory(bytes, "s.ply", options).cloud);
+  expect_same_cloud(read_point_cloud(path, options).cloud, read_point_cloud_from_memory(bytes, "s.ply", options).cloud);
   EXPECT_EQ(points_in_header(path), 20000u);
 }
 

@@ -1,0 +1,133 @@
+// Streamed read of the XYZ family: the rows handed over in chunks, two passes over the mapped text. A text file has
+// no count and, without --columns or a header row, no layout until every row was seen: the header's count is an
+// estimate for the budget decision, and the first pass gathers the statistics the layout guess needs
+// (ColumnStats), so that the second pass reads the columns exactly as the whole read would.
+
+#include <limits>
+#include <memory>
+
+#include "point_stream.h"
+#include "xyz.h"
+
+namespace pcsketch::io::detail {
+namespace {
+
+/// Data lines whose length the count estimate looks at.
+constexpr std::size_t kEstimateLines = 1024;
+
+// An estimate of the rows: the file size over the shortest of the first data lines (with its line end), so that it
+// errs on the high side; the rows themselves when the file holds fewer lines. Never trusted beyond the budget
+// decision: the first pass counts the rows.
+std::uint64_t estimate_rows(const Source& src) {
+  LineReader lines(skip_bom(src.bytes), 1, src.path);
+  std::string_view line;
+  std::size_t before = lines.consumed(src.bytes), shortest = std::numeric_limits<std::size_t>::max();
+  std::uint64_t rows = 0;
+  try {
+    while (rows < kEstimateLines) {
+      if (!lines.next(line)) return rows;
+      const std::size_t bytes = lines.consumed(src.bytes) - before;
+      before += bytes;
+      if (is_comment_or_blank(line)) continue;
+      shortest = std::min(shortest, bytes);
+      ++rows;
+    }
+  } catch (const Error&) {
+    return rows;  // an overlong line: the first pass reports it, after any error on an earlier line
+  }
+  return src.bytes.size() / shortest;
+}
+
+// What the first pass learns for the second.
+struct XyzState {
+  std::optional<ColumnStats> stats;  ///< of every row; empty before the first pass or for a file without rows
+  XyzLayout layout;
+  std::vector<std::string> unread;
+  bool surveyed = false;
+};
+
+// The chunks' buffers; the second pass fills normals, colours and intensity when the layout has them.
+struct XyzChunk {
+  XyzChunk(std::size_t n, const XyzFields* f)
+      : positions(n),
+        normals(f && f->has_normals ? n : 0),
+        colors(f && f->has_colors ? n : 0),
+        intensity(f && f->intensity < f->width ? n : 0) {}
+  std::vector<Vec3d> positions;
+  std::vector<Vec3f> normals;
+  std::vector<Rgb8> colors;
+  std::vector<float> intensity;
+};
+
+void stream_xyz(XyzState& state, const Source& src, std::size_t chunk_points, PointSink& sink) {
+  chunk_points = std::max<std::size_t>(chunk_points, 1);
+  const bool survey = !state.surveyed;
+  std::optional<XyzFields> f;
+  if (!survey && state.stats) f.emplace(state.layout, state.stats->width);
+  const double scale = f ? colour_scale(*state.stats, *f) : 1.0;
+  XyzChunk chunk(chunk_points, f ? &*f : nullptr);
+  XyzRows rows(src);
+  std::uint64_t first = 0;
+  std::size_t n = 0, released = 0;
+  const auto flush = [&] {
+    sink.points({.first = first,
+                 .positions = std::span(chunk.positions).first(n),
+                 .normals = std::span(chunk.normals).first(chunk.normals.empty() ? 0 : n),
+                 .colors = std::span(chunk.colors).first(chunk.colors.empty() ? 0 : n),
+                 .intensity = std::span(chunk.intensity).first(chunk.intensity.empty() ? 0 : n)});
+    first += n;
+    n = 0;
+    if (src.mapped) released = release_pages(src.bytes, released, rows.consumed());
+  };
+  while (rows.next(chunk.positions[n])) {
+    const float* row = rows.row();
+    if (survey) {
+      if (!state.stats) state.stats.emplace(rows.width());
+      state.stats->add(row);
+    }
+    if (!chunk.normals.empty()) chunk.normals[n] = Vec3f(row[f->normal[0]], row[f->normal[1]], row[f->normal[2]]);
+    if (!chunk.colors.empty())
+      chunk.colors[n] = {to_channel(scale * row[f->rgb[0]]), to_channel(scale * row[f->rgb[1]]),
+                         to_channel(scale * row[f->rgb[2]])};
+    if (!chunk.intensity.empty()) chunk.intensity[n] = row[f->intensity];
+    if (++n == chunk_points) flush();
+  }
+  if (n > 0) flush();
+  if (!survey) return;
+  state.layout = rows.layout();
+  state.unread = rows.unread();
+  state.surveyed = true;
+}
+
+// StreamHeader::surveyed: the exact count, and the layout as the whole read decides it.
+void complete(XyzState& state, const std::string& path, StreamHeader& header, std::uint64_t rows) {
+  header.count = rows;
+  if (!state.stats) return;  // no rows: the read fails as the whole read does
+  XyzLayout& layout = state.layout;
+  if (layout.columns.empty()) guess_layout(layout, *state.stats, header.format, path, header.warnings);
+  const XyzFields f(layout, state.stats->width);
+  header.has_normals = f.has_normals;
+  header.has_colors = f.has_colors;
+  header.has_intensity = f.intensity < f.width;
+  header.other_attributes = f.not_kept(layout, state.unread);
+  header.columns = describe(layout);
+}
+
+}  // namespace
+
+std::optional<StreamHeader> xyz_stream_header(const Source& source) {
+  if (!reads_as_xyz(source)) return std::nullopt;
+  const auto state = std::make_shared<XyzState>();
+  StreamHeader header;
+  header.count = estimate_rows(source);
+  header.format = xyz_format(source.path);
+  header.stream = [state](const Source& src, std::size_t chunk_points, PointSink& sink) {
+    stream_xyz(*state, src, chunk_points, sink);
+  };
+  header.surveyed = [state, path = source.path](StreamHeader& h, std::uint64_t rows) {
+    complete(*state, path, h, rows);
+  };
+  return header;
+}
+
+}  // namespace pcsketch::io::detail
