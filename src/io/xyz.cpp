@@ -148,6 +148,7 @@ std::vector<std::string> XyzFields::not_kept(const XyzLayout& layout, std::vecto
 }
 
 double colour_scale(const ColumnStats& stats, const XyzFields& fields) {
+  if (!fields.has_colors) return 1.0;  // rgb holds no column then (width, past the statistics)
   bool unit_range = true, whole = true;
   for (const std::size_t c : fields.rgb) {
     unit_range = unit_range && stats.unit_range[c];
