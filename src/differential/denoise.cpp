@@ -123,6 +123,7 @@ DenoiseResult denoise(std::vector<Vec3f>& points, neighbourhood::Neighbourhoods&
   DenoiseResult result;
   if (!options.enabled || neighbourhoods.k < 6 || !(spacing > 0)) return result;
   result.noise_before = estimate_noise(points, normals, neighbourhoods);
+  result.noise_estimated = true;
   if (!(result.noise_before > options.min_noise_factor * spacing)) return result;
   const ProgressReporter report(options.progress, "denoise");
   std::vector<float> spatial = spatial_weights(neighbourhoods);

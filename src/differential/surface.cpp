@@ -92,10 +92,10 @@ void remove_outliers(PointCloud& cloud, Surface& surface, std::optional<neighbou
 /// (0.10–0.18 rad on 2k-point samples and coarse mesh vertices, against under 0.01 on dense clean samples); the
 /// contours' persistence rule would then drop real rims. Noise σ tilts a PCA normal over k ≈ 16 neighbours within
 /// R ≈ 2.3 h by about 2σ / (R √k) ≈ 0.22 σ/h, and σ̂ (estimate_noise) separates noise from shape misfit.
-float noise_tilt(float measured, const Surface& surface, const SurfaceOptions& options) {
-  constexpr float kTiltPerNoise = 0.25f;  // radians per σ̂/h
-  if (!options.denoise.enabled || !(surface.spacing > 0)) return measured;  // σ̂ was not estimated
-  return std::min(measured, kTiltPerNoise * surface.input_noise / surface.spacing);
+float noise_tilt(float measured, const Surface& surface, const DenoiseResult& denoised) {
+  constexpr float kTiltPerNoise = 0.25f;           // radians per σ̂/h
+  if (!denoised.noise_estimated) return measured;  // nothing separates noise from bending then
+  return std::min(measured, kTiltPerNoise * denoised.noise_before / surface.spacing);
 }
 
 }  // namespace
@@ -184,7 +184,7 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
     append(surface.warnings, orientation.warnings);
   }
 
-  surface.normal_noise = noise_tilt(normal_noise(cloud.normals, surface.neighbourhoods), surface, options);
+  surface.normal_noise = noise_tilt(normal_noise(cloud.normals, surface.neighbourhoods), surface, denoised);
   if (surface.denoised)
     for (std::size_t i = 0; i < cloud.size(); ++i)
       if (raw_normals[i].dot(cloud.normals[i]) < 0) raw_normals[i] = -raw_normals[i];  // the orientation's signs

@@ -152,13 +152,6 @@ void ColumnStats::add(const float* row) {
   }
 }
 
-std::vector<Column> guess_columns(std::span<const float> values, std::size_t width, bool pts, const std::string& path,
-                                  Warnings& warnings) {
-  ColumnStats stats(width);
-  for (std::size_t r = 0; r + width <= values.size() && width > 0; r += width) stats.add(values.data() + r);
-  return guess_columns(stats, pts, path, warnings);
-}
-
 std::vector<Column> guess_columns(const ColumnStats& stats, bool pts, const std::string& path, Warnings& warnings) {
   const std::size_t width = stats.width;
   std::vector<Column> columns(std::max<std::size_t>(width, 3), Column::Skip);

@@ -58,10 +58,6 @@ struct ColumnStats {
 /// @return `stats.width` columns
 std::vector<Column> guess_columns(const ColumnStats& stats, bool pts, const std::string& path, Warnings& warnings);
 
-/// The same from the values: #rows by `width`, row-major (columns 1-3 are not looked at).
-std::vector<Column> guess_columns(std::span<const float> values, std::size_t width, bool pts, const std::string& path,
-                                  Warnings& warnings);
-
 /// "x,y,z,r,g,b": a layout as --columns would spell it.
 std::string columns_to_string(std::span<const Column> columns);
 

@@ -14,10 +14,10 @@ std::vector<std::uint8_t> pinned_vertices(const Polyline& line, const view::Came
   std::vector<Vec2f> image(n);
   for (std::size_t i = 0; i < n; ++i) image[i] = camera.project(line.points[i]).head<2>();
   // Sparse lines (a coarse mesh's vertices, 15–20 px apart) need an arm of a few segments to see past their steps.
-  std::vector<float> segment;
-  for (std::size_t i = 0; i + 1 < n; ++i) segment.push_back((image[i + 1] - image[i]).norm());
-  // Image length of the segment from vertex i % n to the next (the closing one included).
-  const auto segment_at = [&](std::size_t i) { return (image[(i + 1) % n] - image[i % n]).norm(); };
+  // Image length of the segment from vertex i to the next (the closing one last).
+  std::vector<float> length(n);
+  for (std::size_t i = 0; i < n; ++i) length[i] = (image[(i + 1) % n] - image[i]).norm();
+  std::vector<float> segment(length.begin(), length.end() - 1);  // the open line's: the median ignores the closing
   std::nth_element(segment.begin(), segment.begin() + static_cast<std::ptrdiff_t>(segment.size() / 2), segment.end());
   const float arm = std::max(o.corner_arm_px, 2.f * segment[segment.size() / 2]);
   const std::vector<float> bend = bend_angles_deg(line, image, arm);
@@ -28,7 +28,7 @@ std::vector<std::uint8_t> pinned_vertices(const Polyline& line, const view::Came
     // A bend between segments over 1.5 arms (12 px; a coarse cloud's outline, 10–20 px apart) is the shape drawn
     // at that sample: smoothed, the vertex clouds' lines left the mesh's rims (contour P and R 0.01–0.06 lower over
     // 3 views of 5 clouds). The stairs of a traced crease step by about a spacing, under 9 px, and are smoothed.
-    const bool sparse = !end && std::min(segment_at(i + n - 1), segment_at(i)) > 1.5f * o.corner_arm_px;
+    const bool sparse = !end && std::min(length[(i + n - 1) % n], length[i]) > 1.5f * o.corner_arm_px;
     pinned[i] = end || sparse || (bend[i] < o.corner_angle_deg && bend[i] <= before && bend[i] <= after);
   }
   return pinned;

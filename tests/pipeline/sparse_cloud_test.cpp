@@ -62,6 +62,20 @@ TEST(SparseCloud, NoisyCloudsKeepTheirNormalNoise) {
   EXPECT_EQ(surface.normal_noise, differential::normal_noise(cloud.normals, surface.neighbourhoods));
 }
 
+// With 5 neighbours the noise is not estimated (a quadric needs 6 points): nothing separates noise from bending, and
+// the measured spread stands.
+TEST(SparseCloud, UnestimatedNoiseLeavesTheNormalNoiseAsMeasured) {
+  PointCloud cloud =
+      io::sample_mesh(torus_mesh(1.f, 0.35f, 192, 96), {.n = 30000, .noise_sigma_factor = 0.003, .seed = 7});
+  cloud.normals.clear();
+  differential::SurfaceOptions options;
+  options.neighbourhood.k = 5;
+  const differential::Surface surface = differential::analyse_surface(cloud, options);
+  EXPECT_FALSE(surface.denoised);
+  EXPECT_GT(surface.normal_noise, 0.f);
+  EXPECT_EQ(surface.normal_noise, differential::normal_noise(cloud.normals, surface.neighbourhoods));
+}
+
 /// Contour precision and recall (3 px at 1024 px) of a drawing of `cloud` against the visible contours of `mesh`.
 test::LineMatch contour_scores(PointCloud cloud, const Mesh& mesh, const Vec3d& direction, bool* denoised = nullptr) {
   DrawOptions options;

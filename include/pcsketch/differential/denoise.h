@@ -36,10 +36,11 @@ struct DenoiseOptions {
 };
 
 struct DenoiseResult {
-  bool applied = false;         ///< the estimated noise exceeded the trigger and the points were moved
-  float noise_before = 0;       ///< σ̂ of the input, model units
-  std::vector<Vec3f> normals;   ///< #P filtered unit normals of the moved points (unoriented); empty unless applied
-  std::size_t iterations = 0;   ///< rounds run
+  bool applied = false;          ///< the estimated noise exceeded the trigger and the points were moved
+  bool noise_estimated = false;  ///< σ̂ was estimated (denoising on, k ≥ 6, spacing > 0); noise_before is 0 if not
+  float noise_before = 0;        ///< σ̂ of the input, model units
+  std::vector<Vec3f> normals;    ///< #P filtered unit normals of the moved points (unoriented); empty unless applied
+  std::size_t iterations = 0;    ///< rounds run
 };
 
 /// Estimates the noise and, when it exceeds the trigger, moves `points` in place and refreshes the distances (and
