@@ -50,7 +50,7 @@ Measured measure(const std::string& path) {
 std::string serialise(const Measured& m) {
   std::ostringstream out;
   out.precision(17);
-  out << m.points << ' ' << m.fit_neighbours << ' ' << m.read << ' ' << m.t.reorder << ' ' << m.t.kd_tree << ' '
+  out << m.points << ' ' << m.fit_neighbours << ' ' << m.read << ' ' << m.t.reorder << ' '
       << m.t.neighbourhoods << ' ' << m.t.normals << ' ' << m.t.orientation << ' ' << m.t.curvature << ' ' << m.analysis_cpu << ' '
       << m.peak;
   return out.str();
@@ -59,7 +59,7 @@ std::string serialise(const Measured& m) {
 Measured parse(const std::string& text) {
   std::istringstream in(text);
   Measured m;
-  in >> m.points >> m.fit_neighbours >> m.read >> m.t.reorder >> m.t.kd_tree >> m.t.neighbourhoods >> m.t.normals >>
+  in >> m.points >> m.fit_neighbours >> m.read >> m.t.reorder >> m.t.neighbourhoods >> m.t.normals >>
       m.t.orientation >> m.t.curvature >> m.analysis_cpu >> m.peak;
   return m;
 }
@@ -99,11 +99,10 @@ int run(int argc, char** argv) {
     add_per_point_row(table, stage, results, seconds_of);
   };
   const auto geometry = [](const Measured& m) {
-    return m.t.kd_tree + m.t.neighbourhoods + m.t.normals + m.t.orientation + m.t.curvature;
+    return m.t.neighbourhoods + m.t.normals + m.t.orientation + m.t.curvature;
   };
   row("read", [](const Measured& m) { return m.read; });
   row("spatial reorder", [](const Measured& m) { return m.t.reorder; });
-  row("kd-tree rebuild after denoising", [](const Measured& m) { return m.t.kd_tree; });
   row("k-NN neighbourhoods (tree built beside)", [](const Measured& m) { return m.t.neighbourhoods; });
   row("normals (PCA)", [](const Measured& m) { return m.t.normals; });
   row("orientation", [](const Measured& m) { return m.t.orientation; });

@@ -5,12 +5,15 @@
 //
 //   bench_scans [-n N] [--models a,b] [--conditions clean,0.1%,...] [--views K] [--boundary on|off]
 //               [--fusion on|off] [--smooth on|off] [--min-stroke-length PX] [--score all|drawn]
+//               [--config OPTIONS.json]
 //
+// --config reads options as `pcsketch draw --print-config` writes them (any subset), in its place among the flags.
 // --score drawn leaves out the strokes fused into another line (not painted); by default every visible stroke is
 // scored as the kind it was traced as.
 //
 // Each (model, condition) runs in its own process. "total" = prepare + the first view (no reading, no writing).
 
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -19,6 +22,7 @@
 
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/io/sample_mesh.h"
+#include "pcsketch/options_table.h"
 #include "pcsketch/pipeline.h"
 #include "support/bench_support.h"
 #include "support/mesh_ground_truth.h"
@@ -133,6 +137,11 @@ int run(int argc, char** argv) {
     else if (flag == "--score") drawn_only = value == "drawn";
     else if (flag == "--smooth") options.finish.smooth = value != "off";
     else if (flag == "--min-stroke-length") options.finish.min_length_px = std::stof(value);
+    else if (flag == "--config") {
+      std::ifstream in(value);
+      if (!in) throw std::runtime_error("cannot open " + value);
+      options::from_json(nlohmann::json::parse(in), options);
+    }
     else if (flag == "--conditions") {
       conditions.clear();
       for (const std::string& name : split(value))

@@ -196,7 +196,7 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   }
   const differential::SurfaceTimings& st = p.surface.timings;
   p.timings.reorder = st.reorder;
-  p.timings.neighbourhoods = st.kd_tree + st.neighbourhoods;
+  p.timings.neighbourhoods = st.neighbourhoods;
   p.timings.outliers = st.outliers;
   p.timings.denoise = st.denoise;
   p.timings.normals = st.normals + st.orientation;

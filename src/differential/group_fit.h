@@ -22,7 +22,7 @@ struct GroupFitOptions {
   std::size_t fit = 0;          ///< points per fit (the support's radius is estimated to hold this many)
   double reach = 0.3;           ///< group cells are 2·reach fit radii wide
   double noise_sigma = 0;       ///< the cloud's noise σ̂, model units
-  double misfit_factor = 3;     ///< cubic residual variance over this × σ̂²: fit each point on its own
+  double misfit_factor = 5;     ///< cubic residual variance over this × σ̂²: fit each point on its own
   double cubic_shrink = 4;      ///< the cubic terms count in full only where they remove ≫ this × σ̂²
   ProgressFn progress;
   std::string_view stage = "curvature";  ///< the progress stage name

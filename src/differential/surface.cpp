@@ -135,19 +135,19 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
   // Its frames are the raw points' normals too: at a crease they bisect the two faces, where the height field of a
   // quadric fits the fold; the filtered normal of one face turns the other into a wall (a noisy cube's edges were
   // traced over 69–89% of their length instead of ≥ 90%).
-  std::vector<Vec3f> raw, raw_normals;
+  // So the points move in a copy, and the raw ones stay where the tree indexes them until the curvature is done.
+  std::vector<Vec3f> moved, raw_normals;
+  DenoiseResult denoised;
   if (options.denoise.enabled) {
-    raw = cloud.positions;
+    moved = cloud.positions;
     raw_normals = estimate ? pca->normals : cloud.normals;
+    denoised = timed(t.denoise, [&] {
+      return denoise(moved, surface.neighbourhoods, surface.spacing, raw_normals,
+                     with_progress(options.denoise, options.progress));
+    });
   }
-  DenoiseResult denoised = timed(t.denoise, [&] {
-    return denoise(cloud.positions, surface.neighbourhoods, surface.spacing, estimate ? pca->normals : cloud.normals,
-                   with_progress(options.denoise, options.progress));
-  });
   surface.input_noise = denoised.noise_before;
   if (denoised.applied) {
-    // The tree indexed cloud.positions, which moved: the curvature's wider fits query it over the raw points.
-    timed(t.kd_tree, [&] { tree.emplace(raw); });
     surface.denoised = true;
     if (!estimate) {
       // The filtered directions, with the file's signs: the file knows the orientation, the filter the direction.
@@ -158,6 +158,7 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
   } else if (estimate) {
     cloud.normals = std::move(pca->normals);
   }
+  const std::vector<Vec3f>& positions = surface.denoised ? moved : cloud.positions;
   if (estimate) {
     append(surface.warnings, pca->warnings);
     surface.normals_estimated = true;
@@ -165,7 +166,7 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
   bool orient = estimate || options.orient_file_normals;
   if (!orient) {
     const double disagreement = timed(t.orientation, [&] {
-      return sign_disagreement(cloud.positions, cloud.normals, surface.neighbourhoods, options.orientation.criterion);
+      return sign_disagreement(positions, cloud.normals, surface.neighbourhoods, options.orientation.criterion);
     });
     if (disagreement > options.file_normal_disagreement) {
       char percent[16];
@@ -177,7 +178,7 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
   }
   if (orient) {
     const OrientResult orientation = timed(t.orientation, [&] {
-      return orient_normals(cloud.positions, cloud.normals, surface.neighbourhoods,
+      return orient_normals(positions, cloud.normals, surface.neighbourhoods,
                             with_progress(options.orientation, options.progress));
     });
     surface.components = orientation.components;
@@ -189,12 +190,12 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
     for (std::size_t i = 0; i < cloud.size(); ++i)
       if (raw_normals[i].dot(cloud.normals[i]) < 0) raw_normals[i] = -raw_normals[i];  // the orientation's signs
   surface.curvature = timed(t.curvature, [&] {
-    return estimate_curvature(surface.denoised ? raw : cloud.positions,
-                              surface.denoised ? raw_normals : cloud.normals, surface.neighbourhoods, *tree,
-                              with_progress(options.curvature, options.progress));
+    return estimate_curvature(cloud.positions, surface.denoised ? raw_normals : cloud.normals,
+                              surface.neighbourhoods, *tree, with_progress(options.curvature, options.progress));
   });
   append(surface.warnings, surface.curvature.warnings);
-  if (tree_out && !surface.denoised) *tree_out = std::move(tree);
+  if (surface.denoised) cloud.positions = std::move(moved);  // the tree indexes the raw points: dropped
+  else if (tree_out) *tree_out = std::move(tree);
   return surface;
 }
 

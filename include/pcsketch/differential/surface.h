@@ -38,9 +38,9 @@ struct SurfaceOptions {
 };
 
 /// Seconds spent in each step, for --timings and bench/. `neighbourhoods` includes the kd-tree's build, which runs
-/// beside the neighbour search; `kd_tree` counts only a rebuild over the raw points after denoising.
+/// beside the neighbour search.
 struct SurfaceTimings {
-  double reorder = 0, kd_tree = 0, neighbourhoods = 0, outliers = 0, denoise = 0, normals = 0, orientation = 0, curvature = 0;
+  double reorder = 0, neighbourhoods = 0, outliers = 0, denoise = 0, normals = 0, orientation = 0, curvature = 0;
 };
 
 struct Surface {
