@@ -3,7 +3,7 @@
 // every point (both at 1024 px, default options, visible contours sampled every 0.5 px, matched within 2 px).
 //
 //   bench_stream [--full] [--cell-pixels C] FILE ...   (PLY made by `pcsketch sample MESH -n N -o FILE.ply`; any
-//   streamed format works: LAS, binary PCD, XYZ)
+//   streamed format works: ascii PLY, LAS, ascii or binary PCD, XYZ)
 //
 // --cell-pixels: the thinning's cell in pixels instead of the default 0.5 (to see what a coarser one costs).
 // --full also draws each file from all its points (the reference for precision/recall; needs ~330 bytes a point).

@@ -223,6 +223,49 @@ void decode(const PcdHeader& h, ValueOf&& value_of, Vec3d& p, Vec3f* n, Rgb8* c)
   if (c != nullptr) *c = unpack_rgb(value_of(*h.rgb), h.rgb->scalar);
 }
 
+/// The points of an ascii body, one a line (blank lines skipped), read in order; shared by the whole and the
+/// streamed read so that both fail alike.
+class AsciiRows {
+ public:
+  AsciiRows(const Source& src, const PcdHeader& h)
+      : src_(src), h_(h), lines_(src.bytes.substr(h.body), h.header_line + 1, src.path) {
+    for (const Field& f : h.fields) {
+      first_value_.push_back(values_.size());
+      values_.resize(values_.size() + f.count);
+    }
+  }
+
+  /// Point `i` (the i-th call): its position, normal (when `n`) and colour (when `c`).
+  void read(std::uint64_t i, Vec3d& p, Vec3f* n, Rgb8* c) {
+    std::string_view line, token;
+    do {
+      if (!lines_.next(line))
+        src_.fail_at_line(lines_.line() + 1,
+                          "PCD: file ends after " + std::to_string(i) + " of " + std::to_string(h_.points) + " points");
+    } while (line.find_first_not_of(" \t\r") == std::string_view::npos);
+    Tokens tokens(line, false);
+    for (double& v : values_) {
+      if (!tokens.next(token))
+        src_.fail_at_line(lines_.line(), "PCD: too few values (need " + std::to_string(values_.size()) + ")");
+      if (!parse_double(token, v)) src_.fail_at_line(lines_.line(), "PCD: " + bad_number(token));
+    }
+    const auto value_of = [&](const Field& f) {
+      return values_[first_value_[static_cast<std::size_t>(&f - h_.fields.data())]];
+    };
+    decode(h_, value_of, p, n, c);
+  }
+
+  /// Offset of the first byte not read yet (past the last point's line).
+  std::size_t end() const { return h_.body + lines_.offset(); }
+
+ private:
+  const Source& src_;
+  const PcdHeader& h_;
+  LineReader lines_;
+  std::vector<std::size_t> first_value_;  ///< per field, the index of its first value on a line
+  std::vector<double> values_;            ///< the values of the line last read
+};
+
 }  // namespace
 
 bool sniff_pcd(std::string_view head) {
@@ -238,7 +281,6 @@ RawCloud parse_pcd(const Source& src, Want) {
   PcdHeader h;
   read_header(src, h);
   const std::uint64_t points = h.points;
-  const std::vector<Field>& fields = h.fields;
   RawCloud raw;
   raw.format = "pcd " + h.data;
   raw.other_attributes = h.other_attributes;
@@ -253,30 +295,9 @@ RawCloud parse_pcd(const Source& src, Want) {
     decode(h, value_of, raw.positions[i], h.has_normals ? &raw.normals[i] : nullptr, h.rgb ? &raw.colors[i] : nullptr);
   };
   if (h.data == "ascii") {
-    LineReader lines(src.bytes.substr(h.body), h.header_line + 1, src.path);
-    std::string_view line, token;
-    // The first value of each field on a line, by field order.
-    std::vector<std::size_t> first_token(fields.size());
-    std::size_t tokens_per_line = 0;
-    for (std::size_t k = 0; k < fields.size(); ++k) {
-      first_token[k] = tokens_per_line;
-      tokens_per_line += fields[k].count;
-    }
-    std::vector<double> values(tokens_per_line);
-    for (std::size_t i = 0; i < points; ++i) {
-      do {
-        if (!lines.next(line))
-          src.fail_at_line(lines.line() + 1,
-                           "PCD: file ends after " + std::to_string(i) + " of " + std::to_string(points) + " points");
-      } while (line.find_first_not_of(" \t\r") == std::string_view::npos);
-      Tokens tokens(line, false);
-      for (double& v : values) {
-        if (!tokens.next(token))
-          src.fail_at_line(lines.line(), "PCD: too few values (need " + std::to_string(tokens_per_line) + ")");
-        if (!parse_double(token, v)) src.fail_at_line(lines.line(), "PCD: " + bad_number(token));
-      }
-      store(i, [&](const Field& f) { return values[first_token[&f - fields.data()]]; });
-    }
+    AsciiRows rows(src, h);
+    for (std::size_t i = 0; i < points; ++i)
+      rows.read(i, raw.positions[i], h.has_normals ? &raw.normals[i] : nullptr, h.rgb ? &raw.colors[i] : nullptr);
     return raw;
   }
   // Binary: point-major records. Compressed: field-major arrays (each field's values for every point in turn).
@@ -298,11 +319,11 @@ std::optional<StreamHeader> pcd_stream_header(const Source& src) {
   if (!sniff_pcd(src.bytes)) return std::nullopt;
   PcdHeader h;
   read_header(src, h);
-  if (h.data != "binary") return std::nullopt;
+  if (h.data == "binary_compressed") return std::nullopt;  // LZF unpacks the whole body at once: read whole
   return StreamHeader{.count = h.points,
                       .has_normals = h.has_normals,
                       .has_colors = h.rgb != nullptr,
-                      .format = "pcd binary",
+                      .format = "pcd " + h.data,
                       .other_attributes = h.other_attributes,
                       .stream = stream_pcd};
 }
@@ -317,6 +338,14 @@ std::optional<std::uint64_t> pcd_header_count(const Source& src) {
 void stream_pcd(const Source& src, std::size_t chunk_points, PointSink& sink) {
   PcdHeader h;
   read_header(src, h);
+  if (h.data == "ascii") {
+    AsciiRows rows(src, h);
+    stream_chunks(
+        src, h.points, chunk_points, h.has_normals, h.rgb != nullptr, sink,
+        [&](std::uint64_t i, Vec3d& p, Vec3f* n, Rgb8* c) { rows.read(i, p, n, c); },
+        [&](std::uint64_t) { return rows.end(); });
+    return;
+  }
   stream_chunks(
       src, h.points, chunk_points, h.has_normals, h.rgb != nullptr, sink,
       [&](std::uint64_t i, Vec3d& p, Vec3f* n, Rgb8* c) {

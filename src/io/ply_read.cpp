@@ -187,7 +187,8 @@ class BodyReader {
     for (std::uint64_t i = 0; i < e.count; ++i) entry(e, slots, nullptr, kSkip, unused);
   }
 
-  std::size_t position() const { return pos_; }
+  /// Offset of the first byte not read yet (ascii: past the line of the last value).
+  std::size_t position() const { return binary() ? pos_ : h_.body_offset + tokens_.offset(); }
 
   [[noreturn]] void fail(const Element& e, const std::string& message) const {
     if (binary()) src_.fail_at_byte(pos_, "PLY: element " + quote(e.name) + ": " + message);
@@ -315,7 +316,6 @@ void read_vertex(BodyReader& body, const Element& e, const VertexLayout& l, Vec3
 std::optional<StreamHeader> ply_stream_header(const Source& src) {
   if (!src.bytes.starts_with("ply\n") && !src.bytes.starts_with("ply\r\n")) return std::nullopt;
   const Header h = parse_header(src);
-  if (h.encoding == Encoding::Ascii) return std::nullopt;
   check_counts(src, h);
   const Element& vertex = vertex_element(src, h);
   const VertexLayout l = vertex_layout(src, vertex);

@@ -97,8 +97,8 @@ Vec3d robust_extent(std::vector<Vec3d> sample);
 /// Why the resolution rule thinned a file of `count` points ("2097152 points budget for a 1024x1024 image, …").
 std::string resolution_reason(const OutputResolution& resolution, std::uint64_t count);
 
-/// Streaming readers (binary PLY, LAS, binary PCD and the XYZ family; compressed or ascii PCD, ascii PLY, OFF and OBJ
-/// are read whole). The header of a file the reader can stream, or nullopt (another format or layout); throws the
+/// Streaming readers (PLY, LAS, ascii and binary PCD and the XYZ family; binary_compressed PCD, OFF and OBJ are read
+/// whole). The header of a file the reader can stream, or nullopt (another format or layout); throws the
 /// reader's error for a malformed header or a count the file cannot hold. stream_ply() / stream_las() / stream_pcd()
 /// then hand every point to `sink`, `chunk_points` at a time; when `source.mapped`, the pages already read are released
 /// (madvise) so that the mapping does not stay resident. las_read_kept() is LAS's StreamHeader::read_kept.

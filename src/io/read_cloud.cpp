@@ -187,7 +187,7 @@ void check_normals(RawCloud& raw, ReadResult& result, const Source& source) {
 }
 
 // The thinning asked for: --voxel and --max-points, and the resolution rule for a file of more points than its
-// budget (a format read whole; binary PLY, LAS, binary PCD and XYZ are thinned while streamed, by the same rule).
+// budget (a format read whole: OFF, OBJ, compressed PCD; the others are thinned while streamed, by the same rule).
 void thin(ReadResult& result, const DecimateOptions& options) {
   PointCloud& cloud = result.cloud;
   DecimateOptions d = options;

@@ -1,4 +1,4 @@
-// Streamed read with voxel thinning (binary PLY, LAS, binary PCD, the XYZ family): two passes over the mapped file,
+// Streamed read with voxel thinning (PLY, LAS, ascii and binary PCD, the XYZ family): two passes over the mapped file,
 // never a whole RawCloud. The first finds the bounding box (and the robust box for the resolution rule), the second
 // keeps per occupied cell the point nearest its centre in a hash map. The rule, the grid and the tie-breaks are
 // decimate()'s, computed on the same float positions, so the kept points are exactly those of the in-memory read

@@ -83,6 +83,7 @@ class LineReader {
   std::uint64_t line() const { return line_; }  ///< number of the line last returned
   std::string_view rest() const { return text_.substr(pos_); }
   std::size_t consumed(std::string_view whole) const { return whole.size() - (text_.size() - pos_); }
+  std::size_t offset() const { return pos_; }  ///< bytes of the text read: the lines returned and their ends
 
  private:
   static constexpr std::size_t kNone = std::string_view::npos;
@@ -144,6 +145,8 @@ class TokenStream {
   std::uint64_t line() const { return lines_.line(); }
   /// Whether the line of the last token has no token left (an ascii PLY entry is one line).
   bool line_done() { return tokens_.done(); }
+  /// Bytes of the text read: every line a token came from, its end included (where a streamed read may release).
+  std::size_t offset() const { return lines_.offset(); }
 
  private:
   LineReader lines_;

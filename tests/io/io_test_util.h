@@ -170,6 +170,31 @@ inline void expect_same_cloud(const PointCloud& a, const PointCloud& b) {
   }
 }
 
+/// The streamed read of `bytes` as `name` with `options` and a voxel of 0.1, for chunks of 1 to 65,536 points,
+/// against the whole read followed by decimate() with the same cell: points, counts, format, layout, warnings.
+inline void expect_as_whole_read(const std::string& bytes, const std::string& name, io::ReadOptions options) {
+  options.decimate.voxel = 0.1;
+  io::ReadOptions whole_options = options;
+  whole_options.decimate = {};
+  io::ReadResult whole = io::read_point_cloud_from_memory(bytes, name, whole_options);
+  io::decimate(whole.cloud, {.voxel = 0.1});
+  for (const std::size_t chunk : {std::size_t{1}, std::size_t{7}, std::size_t{1000}, std::size_t{1} << 16}) {
+    SCOPED_TRACE(chunk);
+    options.stream_chunk_points = chunk;
+    const io::ReadResult streamed = io::read_point_cloud_from_memory(bytes, name, options);
+    ASSERT_TRUE(streamed.decimation.has_value());
+    EXPECT_TRUE(streamed.decimation->streamed);
+    EXPECT_EQ(streamed.format, whole.format);
+    EXPECT_EQ(streamed.columns, whole.columns);
+    EXPECT_EQ(streamed.other_attributes, whole.other_attributes);
+    EXPECT_EQ(streamed.warnings, whole.warnings);
+    EXPECT_EQ(streamed.points_in_file, whole.points_in_file);
+    EXPECT_EQ(streamed.dropped_non_finite, whole.dropped_non_finite);
+    EXPECT_EQ(streamed.dropped_by_filter, whole.dropped_by_filter);
+    expect_same_cloud(streamed.cloud, whole.cloud);
+  }
+}
+
 /// The resolution rule on `bytes` (over 1000 points) read as `name`: within the default budget, read as before
 /// (no thinning); over a budget of 1000, streamed, with the points of the whole read then decimate() by the same cell.
 /// Returns the streamed read.

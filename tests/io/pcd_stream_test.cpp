@@ -1,5 +1,5 @@
 // Streamed read with thinning (binary PCD): the same kept points, normals and colours as the in-memory read followed
-// by decimate(), for any chunk size; ascii and compressed PCD are still read whole; malformed headers fail as before.
+// by decimate(), for any chunk size; compressed PCD is still read whole; malformed headers fail as before.
 
 #include <gtest/gtest.h>
 
@@ -73,12 +73,12 @@ TEST(PcdStream, VoxelKeepsThePointsOfTheInMemoryReadForAnyChunk) {
 TEST(PcdStream, BudgetAndOtherLayouts) {
   const std::string bytes = sphere_pcd(6000);
   test::expect_budget_rule(bytes, "s.pcd");
-  // ascii PCD is read whole, then thinned by the same rule.
+  // ascii PCD streams too (ascii_stream_test.cpp); compressed PCD is read whole, then thinned by the same rule.
   const std::string ascii =
       "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 3\nPOINTS 3\nDATA ascii\n0 0 0\n1 0 0\n0.01 0 0\n";
   const ReadResult text = read_point_cloud_from_memory(ascii, "a.pcd", {.decimate = {.voxel = 0.5}});
   ASSERT_TRUE(text.decimation.has_value());
-  EXPECT_FALSE(text.decimation->streamed);
+  EXPECT_TRUE(text.decimation->streamed);
   EXPECT_EQ(text.cloud.size(), 2u);
   // Class filters on a streamable file without classes: the whole read's error, not a silently empty filter.
   const std::string message = test::error_of(

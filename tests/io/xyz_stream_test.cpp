@@ -13,6 +13,7 @@
 namespace pcsketch::io {
 namespace {
 
+using test::expect_as_whole_read;
 using test::expect_same_cloud;
 
 std::string text_of(double v) {
@@ -50,30 +51,6 @@ std::string sphere_text(std::size_t n, const TextLayout& l, double centre = 0.0)
     if (l.comments && i % 50 == 0) out += "# a comment\n\n" + l.sep + l.sep + "\n";
   }
   return out;
-}
-
-// The streamed read of `bytes` as `name` against the whole read followed by decimate() with the streamed cell.
-void expect_as_whole_read(const std::string& bytes, const std::string& name, ReadOptions options) {
-  options.decimate.voxel = 0.1;
-  ReadOptions whole_options = options;
-  whole_options.decimate = {};
-  ReadResult whole = read_point_cloud_from_memory(bytes, name, whole_options);
-  decimate(whole.cloud, {.voxel = 0.1});
-  for (const std::size_t chunk : {std::size_t{1}, std::size_t{7}, std::size_t{1000}, std::size_t{1} << 16}) {
-    SCOPED_TRACE(chunk);
-    options.stream_chunk_points = chunk;
-    const ReadResult streamed = read_point_cloud_from_memory(bytes, name, options);
-    ASSERT_TRUE(streamed.decimation.has_value());
-    EXPECT_TRUE(streamed.decimation->streamed);
-    EXPECT_EQ(streamed.format, whole.format);
-    EXPECT_EQ(streamed.columns, whole.columns);
-    EXPECT_EQ(streamed.other_attributes, whole.other_attributes);
-    EXPECT_EQ(streamed.warnings, whole.warnings);
-    EXPECT_EQ(streamed.points_in_file, whole.points_in_file);
-    EXPECT_EQ(streamed.dropped_non_finite, whole.dropped_non_finite);
-    EXPECT_EQ(streamed.dropped_by_filter, whole.dropped_by_filter);
-    expect_same_cloud(streamed.cloud, whole.cloud);
-  }
 }
 
 TEST(XyzStream, EveryLayoutKeepsThePointsOfTheWholeReadForAnyChunk) {

@@ -56,7 +56,7 @@ struct DecimateReport {
   double cell = 0;     ///< the cell edge used, model units (0: the cloud was already small enough)
   double seconds = 0;  ///< time taken
   std::string reason;  ///< why: "--voxel", "--max-points", or the resolution rule with its budget and image
-  bool streamed = false;  ///< the file was thinned while read, never held whole (binary PLY)
+  bool streamed = false;  ///< the file was thinned while read, never held whole (docs/io.md, "Large clouds")
 };
 
 /// Keeps one point per occupied cell of a grid of cubes of edge `cell` anchored at the bounding box's minimum: the

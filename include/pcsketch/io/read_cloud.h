@@ -52,8 +52,8 @@ struct ReadOptions {
   /// Keep only the first of points with exactly equal coordinates (one warning counts the others): m copies of a
   /// point would make every neighbourhood query around it cost m, and they add nothing to the surface.
   bool collapse_duplicates = true;
-  /// Points per chunk of a streamed read (binary PLY, LAS, binary PCD, the XYZ family; thinned while read, docs/io.md);
-  /// the kept points do not depend on it (tests read with tiny chunks).
+  /// Points per chunk of a streamed read (PLY, LAS, ascii and binary PCD, the XYZ family; thinned while read,
+  /// docs/io.md); the kept points do not depend on it (tests read with tiny chunks).
   std::size_t stream_chunk_points = 1 << 16;
   /// Optional: "read" from 0 at the start to 1 when the cloud is ready (text files also as their lines are parsed);
   /// returning false stops the read (pcsketch::Cancelled).

@@ -1,0 +1,223 @@
+// Streamed read with thinning (ascii PLY and ascii PCD): the same kept points, normals, colours, counts and format as
+// the whole read followed by decimate(), for any chunk size, line ends and layouts; a malformed row fails with the
+// whole read's message and line.
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+#include "io_test_util.h"
+#include "pcsketch/io/decimate.h"
+#include "pcsketch/io/read_cloud.h"
+
+namespace pcsketch::io {
+namespace {
+
+using test::expect_as_whole_read;
+using test::expect_same_cloud;
+using test::Layout;
+using test::make_ply;
+using test::PlyElem;
+
+struct PlyShape {
+  std::string colour_type = "uchar";  ///< "float": colours as fractions of 1
+  bool element_before = true;         ///< a "camera" element (scalars and a list) before the vertices
+  bool face_after = false;            ///< a "face" element after them
+  std::vector<std::uint64_t> declared_counts = {};
+};
+
+// `n` points of a noisy unit sphere around `centre` as an ascii PLY (x y z nx ny nz red green blue quality), every
+// 97th point NaN.
+std::string sphere_ply(std::size_t n, const PlyShape& shape = {}, double centre = 0.0) {
+  const std::string& c = shape.colour_type;
+  const double scale = c == "float" ? 1.0 / 255 : 1.0;
+  PlyElem vertex{"vertex",
+                 {{"float", "x"},
+                  {"float", "y"},
+                  {"float", "z"},
+                  {"float", "nx"},
+                  {"float", "ny"},
+                  {"float", "nz"},
+                  {c, "red"},
+                  {c, "green"},
+                  {c, "blue"},
+                  {"float", "quality"}},
+                 {}};
+  const std::vector<test::SpherePoint> sphere = test::noisy_sphere(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3d& d = sphere[i].direction;
+    const Vec3d p = Vec3d::Constant(centre) + sphere[i].radius * d;
+    vertex.rows.push_back({i % 97 == 5 ? std::nan("") : p.x(), p.y(), p.z(), d.x(), d.y(), d.z(),
+                           double(i % 256) * scale, double(i / 256 % 256) * scale, 7.0 * scale, double(i)});
+  }
+  std::vector<PlyElem> elements;
+  if (shape.element_before)
+    elements.push_back({"camera", {{"float", "focal"}, {"int", "ids", "uchar"}}, {{35.0, 3, 1, 2, 3}, {50.0, 0}}});
+  elements.push_back(std::move(vertex));
+  if (shape.face_after) elements.push_back({"face", {{"int", "vertex_indices", "uchar"}}, {{3, 0, 1, 2}}});
+  return make_ply(elements, Layout::Ascii, shape.declared_counts);
+}
+
+std::string text_of(double v) {
+  std::array<char, 40> text;
+  return {text.data(), std::to_chars(text.data(), text.data() + text.size(), v).ptr};
+}
+
+// `n` points of the sphere as an ascii PCD (x y z, normals, packed rgb, a 3-value field, intensity), every 89th NaN,
+// a blank line every 50 rows, CRLF on every third.
+std::string sphere_pcd(std::size_t n, std::uint64_t declared = 0) {
+  const std::string count = std::to_string(declared > 0 ? declared : n);
+  std::string out =
+      "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z normal_x normal_y normal_z rgb extra intensity\n"
+      "SIZE 4 4 4 4 4 4 4 4 4\nTYPE F F F F F F F F F\nCOUNT 1 1 1 1 1 1 1 3 1\nWIDTH " +
+      count + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + count + "\nDATA ascii\n";
+  const std::vector<test::SpherePoint> sphere = test::noisy_sphere(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3d& d = sphere[i].direction;
+    const Vec3d p = sphere[i].radius * d;
+    // The shortest text of the float rgb reads back as the same float, hence the same packed bits.
+    const auto rgb = std::bit_cast<float>(std::uint32_t((i % 256) << 16 | (i / 256 % 256) << 8 | 7));
+    for (const double v :
+         {i % 89 == 3 ? std::nan("") : p.x(), p.y(), p.z(), d.x(), d.y(), d.z(), double(rgb), 1.0, 2.0, 3.0, double(i)})
+      out += text_of(v) + " ";
+    out += i % 3 ? "\n" : "\r\n";
+    if (i % 50 == 0) out += "\n \t\n";
+  }
+  return out;
+}
+
+std::string crlf(const std::string& text) {
+  std::string out;
+  for (const char c : text) out += c == '\n' ? "\r\n" : std::string(1, c);
+  return out;
+}
+
+TEST(AsciiStream, PlyKeepsThePointsOfTheWholeReadForAnyChunk) {
+  const std::string plain = sphere_ply(3000);
+  const std::string unterminated = plain.substr(0, plain.size() - 1);  // the last line without its newline
+  ASSERT_EQ(plain.back(), '\n');
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"before.ply", plain},
+      {"crlf.ply", crlf(plain)},
+      {"unterminated.ply", unterminated},
+      {"crlf_unterminated.ply", crlf(unterminated)},
+      {"float_colours.ply", sphere_ply(3000, {.colour_type = "float"})},
+      {"only_vertices.ply", sphere_ply(3000, {.element_before = false})},
+      {"faces_after.ply", sphere_ply(3000, {.face_after = true})},
+      {"utm.ply", sphere_ply(3000, {}, 512345.678)},
+  };
+  for (const auto& [name, bytes] : cases) {
+    SCOPED_TRACE(name);
+    expect_as_whole_read(bytes, name, {});
+  }
+  const ReadResult r = read_point_cloud_from_memory(plain, "s.ply", {.decimate = {.voxel = 0.1}});
+  EXPECT_EQ(r.format, "ply ascii");
+  EXPECT_EQ(r.other_attributes, std::vector<std::string>{"quality"});
+  EXPECT_EQ(r.dropped_non_finite, 31u);  // i % 97 == 5 for i < 3000
+  EXPECT_TRUE(r.cloud.has_normals());
+  EXPECT_TRUE(r.cloud.has_colors());
+  expect_as_whole_read(plain, "crop.ply", {.crop = CropBox{{-2, -2, 0}, {2, 2, 2}}});
+  expect_as_whole_read(plain, "plain.ply", {.keep_normals = false, .keep_colors = false});
+}
+
+TEST(AsciiStream, PcdKeepsThePointsOfTheWholeReadForAnyChunk) {
+  const std::string plain = sphere_pcd(3000);
+  expect_as_whole_read(plain, "s.pcd", {});
+  expect_as_whole_read(plain.substr(0, plain.size() - 1), "unterminated.pcd", {});
+  expect_as_whole_read(plain, "crop.pcd", {.crop = CropBox{{-2, -2, 0}, {2, 2, 2}}});
+  const ReadResult r = read_point_cloud_from_memory(plain, "s.pcd", {.decimate = {.voxel = 0.1}});
+  EXPECT_EQ(r.format, "pcd ascii");
+  EXPECT_EQ(r.other_attributes, (std::vector<std::string>{"extra", "intensity"}));
+  EXPECT_EQ(r.dropped_non_finite, 34u);  // i % 89 == 3 for i < 3000
+  EXPECT_TRUE(r.cloud.has_normals());
+  EXPECT_TRUE(r.cloud.has_colors());
+  // A value too many on a row is ignored by the whole read (as PCL warns and reads on); the stream does the same.
+  std::string longer = plain;
+  longer.insert(longer.find("\nDATA ascii\n") + 12, "0 0 0 0 0 1 0 0 0 0 0 99\n");
+  longer.replace(longer.find("POINTS 3000"), 11, "POINTS 3001");
+  expect_as_whole_read(longer, "longer.pcd", {});
+}
+
+TEST(AsciiStream, BudgetRuleStreamsOverTheBudgetOnly) {
+  for (const auto& [name, bytes] : {std::pair{"s.ply", sphere_ply(3000)}, std::pair{"s.pcd", sphere_pcd(3000)}}) {
+    SCOPED_TRACE(name);
+    const ReadResult over = test::expect_budget_rule(bytes, name);
+    ASSERT_TRUE(over.decimation.has_value());
+    EXPECT_NE(over.decimation->reason.find("3000 points, over the 1000 budget"), std::string::npos)
+        << over.decimation->reason;
+  }
+}
+
+// The offset of line `line` (from 1) of `text`.
+std::size_t line_start(const std::string& text, std::size_t line) {
+  std::size_t at = 0;
+  for (std::size_t i = 1; i < line; ++i) at = text.find('\n', at) + 1;
+  return at;
+}
+
+TEST(AsciiStream, MalformedPlyFailsAsInTheWholeRead) {
+  const std::string good = sphere_ply(300);
+  const std::size_t body = good.find("end_header\n") + 11;
+  const auto row = [&](std::size_t i) { return body + line_start(good.substr(body), i + 1); };  // line i of the body
+  std::string fewer = good, more = good, word = good, huge_value = good, bad_list = good;
+  const std::size_t end_150 = good.find('\n', row(150)), last_150 = good.rfind(' ', end_150);
+  fewer.erase(last_150, end_150 - last_150);  // its last value: the next row's first fills the gap
+  more.insert(good.find('\n', row(200)), " 4");
+  word.insert(row(250) + 2, "x");
+  huge_value.insert(row(100), "1e999 ");
+  bad_list.replace(row(0), 4, "35 -1");  // the camera's list count
+  const std::vector<std::string> hostile{
+      fewer,
+      more,
+      word,
+      huge_value,
+      bad_list,
+      sphere_ply(300, {.declared_counts = {2, 320}}),         // more vertices than rows, fewer than the bytes allow
+      sphere_ply(300, {.declared_counts = {2, 1000000000}}),  // more than the bytes allow
+      good.substr(0, row(120) + 7),                           // cut inside a row
+      good.substr(0, body) + std::string(std::size_t{3} << 20, '1'),  // a line longer than any point's
+  };
+  test::expect_same_errors(hostile, "bad.ply", [](const std::string& bytes, const std::string& name, bool thinned) {
+    read_point_cloud_from_memory(bytes, name, {.decimate = {.voxel = thinned ? std::optional(0.1) : std::nullopt}});
+  });
+}
+
+TEST(AsciiStream, MalformedPcdFailsAsInTheWholeRead) {
+  const std::string good = sphere_pcd(300);
+  const std::size_t body = good.find("DATA ascii\n") + 11;
+  const auto row = [&](std::size_t line) { return body + line_start(good.substr(body), line); };
+  std::string fewer = good, word = good, huge_value = good;
+  fewer.insert(row(150), "1 2 3\n");
+  word.insert(row(200) + 2, "x");
+  huge_value.insert(row(100), "1e999 ");
+  const std::vector<std::string> hostile{
+      fewer,
+      word,
+      huge_value,
+      sphere_pcd(300, 320),         // more points than rows, fewer than the bytes allow
+      sphere_pcd(300, 1000000000),  // more than the bytes allow
+      good.substr(0, row(120) + 7),
+  };
+  test::expect_same_errors(hostile, "bad.pcd", [](const std::string& bytes, const std::string& name, bool thinned) {
+    read_point_cloud_from_memory(bytes, name, {.decimate = {.voxel = thinned ? std::optional(0.1) : std::nullopt}});
+  });
+}
+
+TEST(AsciiStream, MappedFilesGiveTheSamePoints) {
+  const test::TempDir dir;
+  ReadOptions options;
+  options.decimate.voxel = 0.05;
+  options.stream_chunk_points = 1000;  // pages released between chunks
+  for (const auto& [name, bytes] : {std::pair{"s.ply", sphere_ply(20000)}, std::pair{"s.pcd", sphere_pcd(20000)}}) {
+    SCOPED_TRACE(name);
+    const ReadResult mapped = read_point_cloud(dir.write(name, bytes), options);
+    EXPECT_TRUE(mapped.decimation.has_value() && mapped.decimation->streamed);
+    expect_same_cloud(mapped.cloud, read_point_cloud_from_memory(bytes, name, options).cloud);
+  }
+}
+
+}  // namespace
+}  // namespace pcsketch::io
