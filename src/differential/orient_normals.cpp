@@ -18,6 +18,7 @@ namespace {
 constexpr std::uint32_t kLevels = 4096;     // quantisation of the edge weights
 constexpr std::uint16_t kNoEdge = 0xffff;   // slot whose edge is listed by the other endpoint
 constexpr std::size_t kBlockPoints = 8192;  // points per block of the first, parallel Kruskal pass
+constexpr float kStackedNoise = 3;          // σ̂ within which stacked neighbours lie on one sheet
 
 /// Union-find whose every node stores whether its normal must flip relative to its parent.
 class SignedUnionFind {
@@ -69,11 +70,19 @@ class SignedUnionFind {
 /// a sharp edge's, maps one normal onto the other under that mirror (König and Gumhold 2009), so the pair two faces
 /// of a 90° edge give is as sure as a pair on one face, where n_p·n_q is 0 and says nothing. Coincident points fall
 /// back to n_p·n_q.
-float agreement(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq, OrientCriterion criterion) {
+/// `stacked`: the offset along the normals within which a pair stacked along them is taken for one sheet
+/// (orient_normals' noise_sigma).
+float agreement(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq, OrientCriterion criterion,
+                float stacked = 0) {
   const Vec3f e = q - p;
   const float length2 = e.squaredNorm();
   if (criterion == OrientCriterion::Parallel || !(length2 > 0.f)) return np.dot(nq);
-  return np.dot(nq - (2.f * nq.dot(e) / length2) * e);
+  constexpr float kStackedCos2 = 0.64f;  // cos² 37°
+  const float ep = np.dot(e), eq = nq.dot(e);
+  if (std::abs(ep) <= stacked && std::abs(eq) <= stacked && ep * ep > kStackedCos2 * length2 &&
+      eq * eq > kStackedCos2 * length2)
+    return np.dot(nq);
+  return np.dot(nq - (2.f * eq / length2) * e);
 }
 
 /// Weight level of an edge of agreement c: 0 for a sure one, growing as |c| falls (sqrt(1−|c|) ≈ angle/√2 spreads
@@ -123,7 +132,8 @@ double sign_disagreement(const std::vector<Vec3f>& points, const std::vector<Vec
 }
 
 OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>& normals,
-                            const neighbourhood::Neighbourhoods& neighbourhoods, const OrientOptions& options) {
+                            const neighbourhood::Neighbourhoods& neighbourhoods, const OrientOptions& options,
+                            float noise_sigma) {
   const std::size_t n = points.size();
   detail::check_neighbourhoods("orient normals", n, neighbourhoods);
   if (normals.size() != n)
@@ -139,12 +149,13 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
   // Its slot (i, m) gets the edge's level, or kNoEdge, and the agreement's sign in kDisagree: the one evaluation of
   // the agreement per edge.
   constexpr std::uint16_t kDisagree = 0x8000;
+  const float stacked = kStackedNoise * std::max(0.f, noise_sigma);
   const auto edge_slot = [&](std::size_t i, std::size_t m) -> std::uint16_t {
     const std::uint32_t j = neighbourhoods.indices[i * stride + m];
     const bool listed_by_j = neighbourhoods.distances[i * stride + m] < neighbourhoods.distances[j * stride + k - 1];
     const bool usable = normals[i].squaredNorm() > 0 && normals[j].squaredNorm() > 0;
     if (!usable || (i >= j && listed_by_j)) return kNoEdge;
-    const float c = agreement(points[i], normals[i], points[j], normals[j], options.criterion);
+    const float c = agreement(points[i], normals[i], points[j], normals[j], options.criterion, stacked);
     return static_cast<std::uint16_t>(level(c) | (c < 0 ? kDisagree : 0));
   };
 

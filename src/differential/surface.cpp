@@ -179,7 +179,7 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
   if (orient) {
     const OrientResult orientation = timed(t.orientation, [&] {
       return orient_normals(positions, cloud.normals, surface.neighbourhoods,
-                            with_progress(options.orientation, options.progress));
+                            with_progress(options.orientation, options.progress), denoised.noise_before);
     });
     surface.components = orientation.components;
     append(surface.warnings, orientation.warnings);

@@ -56,9 +56,15 @@ struct OrientResult {
 /// time, deterministic for any thread count; it differs from one global tree only where a block's best internal
 /// path is worse than a detour outside it. Zero normals are left as they are. Expects spatially sorted points
 /// (reorder_spatially) for speed and block compactness; any order gives a consistent result.
+/// `noise_sigma`: the cloud's estimated noise σ̂, model units (analyse_surface passes its estimate; 0: none). Two
+/// neighbours stacked along their normals (the line between them within 37° of both) and no farther apart along
+/// them than 3 σ̂ lie on one sheet, offset by noise: their mirror plane is about the tangent plane, and Reflect would
+/// read them as opposed with full confidence (a noisy cube's faces came out inward, their edges drawn as valleys).
+/// They are compared as Parallel. A thin part's two sides lie farther apart and keep Reflect.
 /// @throws pcsketch::Error if the sizes disagree
 OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>& normals,
-                            const neighbourhood::Neighbourhoods& neighbourhoods, const OrientOptions& options = {});
+                            const neighbourhood::Neighbourhoods& neighbourhoods, const OrientOptions& options = {},
+                            float noise_sigma = 0);
 
 /// Fraction of the k-NN pairs (i, j) whose normals surely disagree in sign: agreement below −0.5 by `criterion`
 /// (see OrientCriterion). A consistently oriented surface gives almost none (bunny samples 0, hippo1.ply's file
