@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <bit>
-#include <charconv>
 #include <cmath>
 #include <limits>
 
@@ -18,6 +17,7 @@ namespace {
 
 using test::expect_as_whole_read;
 using test::expect_same_cloud;
+using test::text_of;
 using test::Layout;
 using test::make_ply;
 using test::PlyElem;
@@ -61,10 +61,6 @@ std::string sphere_ply(std::size_t n, const PlyShape& shape = {}, double centre 
   return make_ply(elements, Layout::Ascii, shape.declared_counts);
 }
 
-std::string text_of(double v) {
-  std::array<char, 40> text;
-  return {text.data(), std::to_chars(text.data(), text.data() + text.size(), v).ptr};
-}
 
 // `n` points of the sphere as an ascii PCD (x y z, normals, packed rgb, a 3-value field, intensity), every 89th NaN,
 // a blank line every 50 rows, CRLF on every third.

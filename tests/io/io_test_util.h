@@ -89,11 +89,15 @@ void append_binary(std::string& out, T v, bool big) {
   out.append(b.data(), b.size());
 }
 
+/// The shortest text that reads back as `v` exactly.
+inline std::string text_of(double v) {
+  std::array<char, 40> text;
+  return {text.data(), std::to_chars(text.data(), text.data() + text.size(), v).ptr};
+}
+
 inline void encode(std::string& out, const std::string& t, double v, Layout layout) {
   if (layout == Layout::Ascii) {
-    std::array<char, 40> text;
-    out.append(text.data(), std::to_chars(text.data(), text.data() + text.size(), v).ptr);
-    out += ' ';
+    out += text_of(v) + ' ';
     return;
   }
   const bool big = layout == Layout::BinaryBE;

@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -144,10 +143,7 @@ TEST(StreamRead, CloudOverTheBudgetIsThinnedToAPixel) {
   // The same rule on a format read whole (OFF, the same float positions) keeps the same points.
   std::string off = "OFF\n20000 0 0\n";
   for (const test::SpherePoint& s : test::noisy_sphere(20000)) {
-    for (const double v : s.radius* s.direction) {
-      std::array<char, 40> text;
-      off.append(text.data(), std::to_chars(text.data(), text.data() + text.size(), double(float(v))).ptr) += ' ';
-    }
+    for (const double v : s.radius* s.direction) off += test::text_of(double(float(v))) + ' ';
     off.back() = '\n';
   }
   const ReadResult whole = read_point_cloud_from_memory(off, "a.off", options);

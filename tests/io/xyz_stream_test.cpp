@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <charconv>
 
 #include "io_test_util.h"
 #include "pcsketch/io/decimate.h"
@@ -15,11 +14,8 @@ namespace {
 
 using test::expect_as_whole_read;
 using test::expect_same_cloud;
+using test::text_of;
 
-std::string text_of(double v) {
-  std::array<char, 40> text;
-  return {text.data(), std::to_chars(text.data(), text.data() + text.size(), v).ptr};
-}
 
 struct TextLayout {
   std::string header;         ///< lines before the rows
