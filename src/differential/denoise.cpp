@@ -21,16 +21,22 @@ std::vector<float> spatial_weights(const neighbourhood::Neighbourhoods& nbh) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nbh.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const float reach = std::max(nbh.distances[i * k + k - 1], 1e-30f);
-      for (std::size_t m = 0; m < k; ++m) w[i * k + m] = std::exp(-std::pow(nbh.distances[i * k + m] / reach, 2.f));
+      for (std::size_t m = 0; m < k; ++m) {
+        const float x = nbh.distances[i * k + m] / reach;
+        w[i * k + m] = std::exp(-x * x);
+      }
     }
   });
   return w;
 }
 
-/// The normal part of the bilateral weights: Tukey's biweight of t = 1 − |n_i·n_j|, zero from t = cutoff on.
-float normal_weight(const Vec3f& a, const Vec3f& b, float inv_cutoff) {
-  const float t = (1.f - std::abs(a.dot(b))) * inv_cutoff;
-  return t < 1.f ? (1.f - t * t) * (1.f - t * t) : 0.f;
+/// The normal part of the bilateral weights: Tukey's biweight of t = 1 − |n_i·n_j| (`dot` = n_i·n_j), zero from
+/// t = cutoff on. Clamped rather than branched: the signs of unoriented normals are random, so branches mispredict.
+float normal_weight(float dot, float inv_cutoff) {
+  float t = (1.f - std::abs(dot)) * inv_cutoff;
+  t = t < 1.f ? t : 1.f;  // NaN too: weight 0
+  const float s = 1.f - t * t;
+  return s * s;
 }
 
 /// One pass of bilateral normal filtering: each normal becomes the weighted mean of its own and its neighbours'
@@ -46,8 +52,8 @@ std::vector<Vec3f> filter_normals(const std::vector<Vec3f>& normals, const neigh
                         Vec3f sum = ni;
                         for (std::size_t m = 0; m < k; ++m) {
                           const Vec3f& nj = normals[nbh.indices[i * k + m]];
-                          const float w = spatial[i * k + m] * normal_weight(ni, nj, inv_cutoff);
-                          sum += (nj.dot(ni) < 0 ? -w : w) * nj;
+                          const float dot = ni.dot(nj);
+                          sum += std::copysign(spatial[i * k + m] * normal_weight(dot, inv_cutoff), dot) * nj;
                         }
                         const float length = sum.norm();
                         out[i] = length > 0 ? Vec3f(sum / length) : ni;
@@ -72,7 +78,7 @@ std::vector<Vec3f> project_to_planes(const std::vector<Vec3f>& points, const std
                         float total = 1.f;  // the point's own plane: zero displacement, damps sparse neighbourhoods
                         for (std::size_t m = 0; m < k; ++m) {
                           const std::uint32_t j = nbh.indices[i * k + m];
-                          const float w = spatial[i * k + m] * normal_weight(normals[i], normals[j], inv_cutoff);
+                          const float w = spatial[i * k + m] * normal_weight(normals[i].dot(normals[j]), inv_cutoff);
                           const Vec3f d = points[j] - points[i];
                           move += 0.5f * w * (normals[j].dot(d) * normals[j] + normals[i].dot(d) * normals[i]);
                           total += w;

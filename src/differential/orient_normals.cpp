@@ -112,7 +112,8 @@ std::vector<Edge> sort_by_level(const std::vector<Edge>& edges) {
 }  // namespace
 
 double sign_disagreement(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
-                         const neighbourhood::Neighbourhoods& neighbourhoods, OrientCriterion criterion) {
+                         const neighbourhood::Neighbourhoods& neighbourhoods, OrientCriterion criterion,
+                         float noise_sigma) {
   const std::size_t n = points.size();
   detail::check_neighbourhoods("sign disagreement", n, neighbourhoods);
   if (normals.size() != n)
@@ -124,7 +125,8 @@ double sign_disagreement(const std::vector<Vec3f>& points, const std::vector<Vec
       [&](const tbb::blocked_range<std::size_t>& range, std::size_t count) {
         for (std::size_t i = range.begin(); i != range.end(); ++i)
           for (const std::uint32_t j : neighbourhoods.of(i))
-            count += agreement(points[i], normals[i], points[j], normals[j], criterion) < -0.5f;
+            count += agreement(points[i], normals[i], points[j], normals[j], criterion, kStackedNoise * noise_sigma) <
+                     -0.5f;
         return count;
       },
       std::plus<>());

@@ -166,7 +166,8 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
   bool orient = estimate || options.orient_file_normals;
   if (!orient) {
     const double disagreement = timed(t.orientation, [&] {
-      return sign_disagreement(positions, cloud.normals, surface.neighbourhoods, options.orientation.criterion);
+      return sign_disagreement(positions, cloud.normals, surface.neighbourhoods, options.orientation.criterion,
+                               denoised.noise_before);
     });
     if (disagreement > options.file_normal_disagreement) {
       char percent[16];

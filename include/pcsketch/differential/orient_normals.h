@@ -69,9 +69,10 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
 /// Fraction of the k-NN pairs (i, j) whose normals surely disagree in sign: agreement below −0.5 by `criterion`
 /// (see OrientCriterion). A consistently oriented surface gives almost none (bunny samples 0, hippo1.ply's file
 /// normals 0.0000); normals whose signs are arbitrary give many (building.ply's file normals 0.098).
+/// `noise_sigma`: as in orient_normals, pairs stacked by the noise are compared as Parallel.
 /// @throws pcsketch::Error if the sizes disagree
 double sign_disagreement(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                          const neighbourhood::Neighbourhoods& neighbourhoods,
-                         OrientCriterion criterion = OrientCriterion::Reflect);
+                         OrientCriterion criterion = OrientCriterion::Reflect, float noise_sigma = 0);
 
 }  // namespace pcsketch::differential
