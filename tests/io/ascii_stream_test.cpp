@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -130,11 +131,6 @@ TEST(AsciiStream, PcdKeepsThePointsOfTheWholeReadForAnyChunk) {
   EXPECT_EQ(r.dropped_non_finite, 34u);  // i % 89 == 3 for i < 3000
   EXPECT_TRUE(r.cloud.has_normals());
   EXPECT_TRUE(r.cloud.has_colors());
-  // A value too many on a row is ignored by the whole read (as PCL warns and reads on); the stream does the same.
-  std::string longer = plain;
-  longer.insert(longer.find("\nDATA ascii\n") + 12, "0 0 0 0 0 1 0 0 0 0 0 99\n");
-  longer.replace(longer.find("POINTS 3000"), 11, "POINTS 3001");
-  expect_as_whole_read(longer, "longer.pcd", {});
 }
 
 TEST(AsciiStream, BudgetRuleStreamsOverTheBudgetOnly) {
@@ -152,6 +148,22 @@ std::size_t line_start(const std::string& text, std::size_t line) {
   std::size_t at = 0;
   for (std::size_t i = 1; i < line; ++i) at = text.find('\n', at) + 1;
   return at;
+}
+
+// The number (from 1) of the line holding byte `offset` of `text`.
+std::size_t line_of(const std::string& text, std::size_t offset) {
+  return 1 + static_cast<std::size_t>(std::count(text.data(), text.data() + offset, '\n'));
+}
+
+// The whole and the streamed read of `bytes` fail alike, with `expected` in the message.
+void expect_error(const std::string& bytes, const std::string& name, const std::string& expected) {
+  for (const bool thinned : {false, true}) {
+    SCOPED_TRACE(thinned);
+    const std::string message = test::error_of([&] {
+      read_point_cloud_from_memory(bytes, name, {.decimate = {.voxel = thinned ? std::optional(0.1) : std::nullopt}});
+    });
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
 }
 
 TEST(AsciiStream, MalformedPlyFailsAsInTheWholeRead) {
@@ -185,12 +197,14 @@ TEST(AsciiStream, MalformedPcdFailsAsInTheWholeRead) {
   const std::string good = sphere_pcd(300);
   const std::size_t body = good.find("DATA ascii\n") + 11;
   const auto row = [&](std::size_t line) { return body + line_start(good.substr(body), line); };
-  std::string fewer = good, word = good, huge_value = good;
+  std::string fewer = good, more = good, word = good, huge_value = good;
   fewer.insert(row(150), "1 2 3\n");
+  more.insert(row(150), "1 2 3 4 5 6 7 8 9 10 11 12\n");  // the fields need 11 values (COUNT 3 for "extra")
   word.insert(row(200) + 2, "x");
   huge_value.insert(row(100), "1e999 ");
   const std::vector<std::string> hostile{
       fewer,
+      more,
       word,
       huge_value,
       sphere_pcd(300, 320),         // more points than rows, fewer than the bytes allow
@@ -200,6 +214,21 @@ TEST(AsciiStream, MalformedPcdFailsAsInTheWholeRead) {
   test::expect_same_errors(hostile, "bad.pcd", [](const std::string& bytes, const std::string& name, bool thinned) {
     read_point_cloud_from_memory(bytes, name, {.decimate = {.voxel = thinned ? std::optional(0.1) : std::nullopt}});
   });
+}
+
+// A row holds exactly the sum of the COUNTs (PCD spec: one point a line, COUNT values a field): one more is an error
+// naming its line, not ignored (a value too many means the fields are not what the header says).
+TEST(AsciiStream, PcdRowWithAValueTooManyNamesItsLine) {
+  const std::string good = sphere_pcd(300);
+  const std::size_t body = good.find("DATA ascii\n") + 11;
+  const std::size_t row_150 = body + line_start(good.substr(body), 150);
+  std::string more = good, last = good;
+  more.insert(row_150, "1 2 3 4 5 6 7 8 9 10 11 12\n");
+  const std::string line = "bad.pcd:" + std::to_string(line_of(more, row_150)) + ": ";
+  expect_error(more, "bad.pcd", line + "PCD: too many values (12; the fields need 11)");
+  last.insert(good.rfind(' '), " 5");  // the last row: nothing after it to go wrong
+  expect_error(last, "bad.pcd",
+               "bad.pcd:" + std::to_string(line_of(good, good.size() - 1)) + ": PCD: too many values (12;");
 }
 
 TEST(AsciiStream, MappedFilesGiveTheSamePoints) {
