@@ -172,7 +172,7 @@ TEST(AsciiStream, MalformedPlyFailsAsInTheWholeRead) {
   const auto row = [&](std::size_t i) { return body + line_start(good.substr(body), i + 1); };  // line i of the body
   std::string fewer = good, more = good, word = good, huge_value = good, bad_list = good;
   const std::size_t end_150 = good.find('\n', row(150)), last_150 = good.rfind(' ', end_150);
-  fewer.erase(last_150, end_150 - last_150);  // its last value: the next row's first fills the gap
+  fewer.erase(last_150, end_150 - last_150);  // its last value: a short row, not a gap for the next row to fill
   more.insert(good.find('\n', row(200)), " 4");
   word.insert(row(250) + 2, "x");
   huge_value.insert(row(100), "1e999 ");
@@ -191,6 +191,30 @@ TEST(AsciiStream, MalformedPlyFailsAsInTheWholeRead) {
   test::expect_same_errors(hostile, "bad.ply", [](const std::string& bytes, const std::string& name, bool thinned) {
     read_point_cloud_from_memory(bytes, name, {.decimate = {.voxel = thinned ? std::optional(0.1) : std::nullopt}});
   });
+}
+
+// A vertex line one value short names its own line (not the next, whose first value it would otherwise take), and a
+// line with a value too many its own; the entries before and after the vertices are lines too.
+TEST(AsciiStream, PlyRowOfTheWrongLengthNamesItsLine) {
+  const std::string good = sphere_ply(300, {.face_after = true});
+  const std::size_t body = good.find("end_header\n") + 11;
+  const std::size_t row_150 = body + line_start(good.substr(body), 151);  // the camera's 2 lines, then vertex 148
+  std::string fewer = good, more = good, short_camera = good;
+  const std::size_t end_150 = good.find('\n', row_150), last_150 = good.rfind(' ', end_150);
+  fewer.erase(last_150, end_150 - last_150);
+  more.insert(end_150, " 4");
+  short_camera.replace(body, good.find('\n', body) - body, "35 3 1 2");  // its list one item short
+  const std::string line = "bad.ply:" + std::to_string(line_of(good, row_150)) + ": ";
+  expect_error(fewer, "bad.ply", line + "PLY: element \"vertex\": too few values on the line");
+  expect_error(more, "bad.ply", line + "PLY: element \"vertex\": more values on the line");
+  expect_error(short_camera, "bad.ply",
+               "bad.ply:" + std::to_string(line_of(good, body)) + ": PLY: element \"camera\": too few values");
+  // The last vertex one value short: the face's line is not read as its end.
+  std::string last = good;
+  const std::size_t face = good.rfind("3 0 1 2"), end_last = face - 1, last_space = good.rfind(' ', end_last);
+  last.erase(last_space, end_last - last_space);
+  expect_error(last, "bad.ply",
+               "bad.ply:" + std::to_string(line_of(good, end_last)) + ": PLY: element \"vertex\": too few values");
 }
 
 TEST(AsciiStream, MalformedPcdFailsAsInTheWholeRead) {
