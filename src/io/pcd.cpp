@@ -249,6 +249,13 @@ class AsciiRows {
         src_.fail_at_line(lines_.line(), "PCD: too few values (need " + std::to_string(values_.size()) + ")");
       if (!parse_double(token, v)) src_.fail_at_line(lines_.line(), "PCD: " + bad_number(token));
     }
+    // A row holds exactly the COUNTs' sum: a value more means the fields are not what the header says.
+    if (!tokens.done()) {
+      std::size_t count = values_.size();
+      while (tokens.next(token)) ++count;
+      src_.fail_at_line(lines_.line(), "PCD: too many values (" + std::to_string(count) + "; the fields need " +
+                                           std::to_string(values_.size()) + ")");
+    }
     const auto value_of = [&](const Field& f) {
       return values_[first_value_[static_cast<std::size_t>(&f - h_.fields.data())]];
     };

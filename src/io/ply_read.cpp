@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <optional>
+#include <utility>
 
 #include "ply_types.h"
 #include "point_stream.h"
@@ -138,6 +139,7 @@ class BodyReader {
   /// property `list_slot` (if any) go to `list`.
   void entry(const Element& e, const std::vector<int>& slots, double* values, int list_slot,
              std::vector<std::uint32_t>& list) {
+    entry_start_ = true;
     for (std::size_t j = 0; j < e.properties.size(); ++j) {
       const Property& p = e.properties[j];
       if (!p.count_type) {
@@ -211,8 +213,12 @@ class BodyReader {
       pos_ += size;
       return v;
     }
+    // An ascii entry is one line: its first value starts a line, the others may not take the next line's.
     std::string_view token;
-    if (!tokens_.next(token)) fail(e, "file ends before property " + quote(p.name) + " (truncated body)");
+    const bool first = std::exchange(entry_start_, false);
+    if (first && !tokens_.next(token)) fail(e, "file ends before property " + quote(p.name) + " (truncated body)");
+    if (!first && !tokens_.next_on_line(token))
+      fail(e, "too few values on the line: it ends before property " + quote(p.name));
     double v = 0;
     if (!parse_double(token, v)) fail(e, bad_number(token) + " for property " + quote(p.name));
     return v;
@@ -228,6 +234,7 @@ class BodyReader {
   const Header& h_;
   std::size_t pos_;
   TokenStream tokens_;
+  bool entry_start_ = false;  ///< ascii: the next value is an entry's first, on a line of its own
   bool swap_ = false;
 };
 

@@ -41,6 +41,10 @@ struct StreamHeader {
   bool has_intensity = false;  ///< the chunks carry an intensity per point (kept as the "intensity" attribute)
   std::string columns;         ///< text formats: ReadResult::columns
   Warnings warnings;           ///< what the reader assumed (a guessed layout), before the read's own warnings
+  /// Text formats: the most points the file can hold (0: `count` is exact). The budget decision and the survey's
+  /// sample stride take it, not the estimate, which may fall short.
+  std::uint64_t max_count = 0;
+  std::uint64_t most() const { return std::max(count, max_count); }
 };
 
 /// One chunk of consecutive points; `normals`, `colors` and `classes` are empty when the chunks carry none.

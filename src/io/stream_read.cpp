@@ -31,8 +31,9 @@ bool filtered_in(const ReadOptions& options, const PointChunk& c, std::size_t i)
 /// Pass 1: counts, bounding box and a sample of positions.
 class Survey final : public PointSink {
  public:
-  Survey(const ReadOptions& options, std::uint64_t count, const ProgressReporter& report)
-      : options_(options), count_(count), stride_(std::max<std::uint64_t>(1, count / kSurveySample)), report_(report) {}
+  /// `count`: the points expected, for progress; `most`: the most there can be, so that the sample stays bounded.
+  Survey(const ReadOptions& options, std::uint64_t count, std::uint64_t most, const ProgressReporter& report)
+      : options_(options), count_(count), stride_(std::max<std::uint64_t>(1, most / kSurveySample)), report_(report) {}
 
   void points(const PointChunk& c) override {
     colour_max = std::max(colour_max, c.colour_max);
@@ -234,17 +235,19 @@ std::optional<ReadResult> read_streamed(const Source& source, const ReadOptions&
   if (!header) return std::nullopt;
   // Class filters on a file without classes: the whole read gives its error.
   if ((!options.classes.empty() || !options.drop_classes.empty()) && !header->has_classes) return std::nullopt;
-  bool by_resolution = d.resolution && header->count > d.resolution->budget();
+  // A text format's count is an estimate that may fall short: a file that may be over the budget is surveyed, never
+  // read whole on the estimate's word.
+  bool by_resolution = d.resolution && header->most() > d.resolution->budget();
   if (!d.voxel && !by_resolution) return std::nullopt;
 
   const auto start = std::chrono::steady_clock::now();
   const ProgressReporter report(options.progress, "read");
   report(0.0);
-  Survey survey(options, header->count, report);
+  Survey survey(options, header->count, header->most(), report);
   header->stream(source, chunk_points, survey);
   if (header->surveyed) {
     header->surveyed(*header, survey.seen);
-    // The estimated count was too high: a cloud within the budget reads exactly as before.
+    // The cloud is within the budget after all: it reads exactly as before.
     by_resolution = d.resolution && header->count > d.resolution->budget();
     if (!d.voxel && !by_resolution) return std::nullopt;
   }

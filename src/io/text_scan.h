@@ -142,6 +142,8 @@ class TokenStream {
     }
     return true;
   }
+  /// The next token of the current line only; false when the line has none left (the line is not left).
+  bool next_on_line(std::string_view& token) { return tokens_.next(token); }
   std::uint64_t line() const { return lines_.line(); }
   /// Whether the line of the last token has no token left (an ascii PLY entry is one line).
   bool line_done() { return tokens_.done(); }

@@ -15,27 +15,37 @@ namespace {
 /// Data lines whose length the count estimate looks at.
 constexpr std::size_t kEstimateLines = 1024;
 
-// An estimate of the rows: the file size over the shortest of the first data lines (with its line end), so that it
-// errs on the high side; the rows themselves when the file holds fewer lines. Never trusted beyond the budget
-// decision: the first pass counts the rows.
-std::uint64_t estimate_rows(const Source& src) {
+/// The rows of a file before they are read: an estimate (for progress) and a bound no file can pass.
+struct RowCount {
+  std::uint64_t estimate = 0;
+  std::uint64_t most = 0;
+};
+
+// The estimate is the file size over the shortest of the first data lines (with its line end); later lines may be
+// shorter, so it can fall short. The bound: every row has the columns of the first (XyzRows checks it), and a column
+// takes at least a byte and a separator or line end. A file of fewer lines is counted. Never allocates: the count
+// that sizes anything is the one the first pass counted.
+RowCount estimate_rows(const Source& src) {
   LineReader lines(skip_bom(src.bytes), 1, src.path);
-  std::string_view line;
-  std::size_t before = lines.consumed(src.bytes), shortest = std::numeric_limits<std::size_t>::max();
+  std::string_view line, token;
+  std::size_t before = lines.consumed(src.bytes), shortest = std::numeric_limits<std::size_t>::max(), columns = 3;
   std::uint64_t rows = 0;
   try {
     while (rows < kEstimateLines) {
-      if (!lines.next(line)) return rows;
+      if (!lines.next(line)) return {rows, rows};
       const std::size_t bytes = lines.consumed(src.bytes) - before;
       before += bytes;
       if (is_comment_or_blank(line)) continue;
       shortest = std::min(shortest, bytes);
-      ++rows;
+      if (++rows < 2) continue;  // the first may be a header row or a PTS count line
+      std::size_t n = 0;
+      for (Tokens tokens(line, true); tokens.next(token);) ++n;
+      columns = std::max<std::size_t>(3, n);
     }
   } catch (const Error&) {
-    return rows;  // an overlong line: the first pass reports it, after any error on an earlier line
+    return {rows, rows};  // an overlong line: the first pass reports it, after any error on an earlier line
   }
-  return src.bytes.size() / shortest;
+  return {src.bytes.size() / shortest, (src.bytes.size() + 1) / (2 * columns)};
 }
 
 // What the first pass learns for the second.
@@ -119,7 +129,9 @@ std::optional<StreamHeader> xyz_stream_header(const Source& source) {
   if (!reads_as_xyz(source)) return std::nullopt;
   const auto state = std::make_shared<XyzState>();
   StreamHeader header;
-  header.count = estimate_rows(source);
+  const RowCount rows = estimate_rows(source);
+  header.count = rows.estimate;
+  header.max_count = rows.most;
   header.format = xyz_format(source.path);
   header.stream = [state](const Source& src, std::size_t chunk_points, PointSink& sink) {
     stream_xyz(*state, src, chunk_points, sink);

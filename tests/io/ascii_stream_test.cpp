@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -130,11 +131,6 @@ TEST(AsciiStream, PcdKeepsThePointsOfTheWholeReadForAnyChunk) {
   EXPECT_EQ(r.dropped_non_finite, 34u);  // i % 89 == 3 for i < 3000
   EXPECT_TRUE(r.cloud.has_normals());
   EXPECT_TRUE(r.cloud.has_colors());
-  // A value too many on a row is ignored by the whole read (as PCL warns and reads on); the stream does the same.
-  std::string longer = plain;
-  longer.insert(longer.find("\nDATA ascii\n") + 12, "0 0 0 0 0 1 0 0 0 0 0 99\n");
-  longer.replace(longer.find("POINTS 3000"), 11, "POINTS 3001");
-  expect_as_whole_read(longer, "longer.pcd", {});
 }
 
 TEST(AsciiStream, BudgetRuleStreamsOverTheBudgetOnly) {
@@ -154,13 +150,29 @@ std::size_t line_start(const std::string& text, std::size_t line) {
   return at;
 }
 
+// The number (from 1) of the line holding byte `offset` of `text`.
+std::size_t line_of(const std::string& text, std::size_t offset) {
+  return 1 + static_cast<std::size_t>(std::count(text.data(), text.data() + offset, '\n'));
+}
+
+// The whole and the streamed read of `bytes` fail alike, with `expected` in the message.
+void expect_error(const std::string& bytes, const std::string& name, const std::string& expected) {
+  for (const bool thinned : {false, true}) {
+    SCOPED_TRACE(thinned);
+    const std::string message = test::error_of([&] {
+      read_point_cloud_from_memory(bytes, name, {.decimate = {.voxel = thinned ? std::optional(0.1) : std::nullopt}});
+    });
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
+}
+
 TEST(AsciiStream, MalformedPlyFailsAsInTheWholeRead) {
   const std::string good = sphere_ply(300);
   const std::size_t body = good.find("end_header\n") + 11;
   const auto row = [&](std::size_t i) { return body + line_start(good.substr(body), i + 1); };  // line i of the body
   std::string fewer = good, more = good, word = good, huge_value = good, bad_list = good;
   const std::size_t end_150 = good.find('\n', row(150)), last_150 = good.rfind(' ', end_150);
-  fewer.erase(last_150, end_150 - last_150);  // its last value: the next row's first fills the gap
+  fewer.erase(last_150, end_150 - last_150);  // its last value: a short row, not a gap for the next row to fill
   more.insert(good.find('\n', row(200)), " 4");
   word.insert(row(250) + 2, "x");
   huge_value.insert(row(100), "1e999 ");
@@ -181,16 +193,42 @@ TEST(AsciiStream, MalformedPlyFailsAsInTheWholeRead) {
   });
 }
 
+// A vertex line one value short names its own line (not the next, whose first value it would otherwise take), and a
+// line with a value too many its own; the entries before and after the vertices are lines too.
+TEST(AsciiStream, PlyRowOfTheWrongLengthNamesItsLine) {
+  const std::string good = sphere_ply(300, {.face_after = true});
+  const std::size_t body = good.find("end_header\n") + 11;
+  const std::size_t row_150 = body + line_start(good.substr(body), 151);  // the camera's 2 lines, then vertex 148
+  std::string fewer = good, more = good, short_camera = good;
+  const std::size_t end_150 = good.find('\n', row_150), last_150 = good.rfind(' ', end_150);
+  fewer.erase(last_150, end_150 - last_150);
+  more.insert(end_150, " 4");
+  short_camera.replace(body, good.find('\n', body) - body, "35 3 1 2");  // its list one item short
+  const std::string line = "bad.ply:" + std::to_string(line_of(good, row_150)) + ": ";
+  expect_error(fewer, "bad.ply", line + "PLY: element \"vertex\": too few values on the line");
+  expect_error(more, "bad.ply", line + "PLY: element \"vertex\": more values on the line");
+  expect_error(short_camera, "bad.ply",
+               "bad.ply:" + std::to_string(line_of(good, body)) + ": PLY: element \"camera\": too few values");
+  // The last vertex one value short: the face's line is not read as its end.
+  std::string last = good;
+  const std::size_t face = good.rfind("3 0 1 2"), end_last = face - 1, last_space = good.rfind(' ', end_last);
+  last.erase(last_space, end_last - last_space);
+  expect_error(last, "bad.ply",
+               "bad.ply:" + std::to_string(line_of(good, end_last)) + ": PLY: element \"vertex\": too few values");
+}
+
 TEST(AsciiStream, MalformedPcdFailsAsInTheWholeRead) {
   const std::string good = sphere_pcd(300);
   const std::size_t body = good.find("DATA ascii\n") + 11;
   const auto row = [&](std::size_t line) { return body + line_start(good.substr(body), line); };
-  std::string fewer = good, word = good, huge_value = good;
+  std::string fewer = good, more = good, word = good, huge_value = good;
   fewer.insert(row(150), "1 2 3\n");
+  more.insert(row(150), "1 2 3 4 5 6 7 8 9 10 11 12\n");  // the fields need 11 values (COUNT 3 for "extra")
   word.insert(row(200) + 2, "x");
   huge_value.insert(row(100), "1e999 ");
   const std::vector<std::string> hostile{
       fewer,
+      more,
       word,
       huge_value,
       sphere_pcd(300, 320),         // more points than rows, fewer than the bytes allow
@@ -200,6 +238,21 @@ TEST(AsciiStream, MalformedPcdFailsAsInTheWholeRead) {
   test::expect_same_errors(hostile, "bad.pcd", [](const std::string& bytes, const std::string& name, bool thinned) {
     read_point_cloud_from_memory(bytes, name, {.decimate = {.voxel = thinned ? std::optional(0.1) : std::nullopt}});
   });
+}
+
+// A row holds exactly the sum of the COUNTs (PCD spec: one point a line, COUNT values a field): one more is an error
+// naming its line, not ignored (a value too many means the fields are not what the header says).
+TEST(AsciiStream, PcdRowWithAValueTooManyNamesItsLine) {
+  const std::string good = sphere_pcd(300);
+  const std::size_t body = good.find("DATA ascii\n") + 11;
+  const std::size_t row_150 = body + line_start(good.substr(body), 150);
+  std::string more = good, last = good;
+  more.insert(row_150, "1 2 3 4 5 6 7 8 9 10 11 12\n");
+  const std::string line = "bad.pcd:" + std::to_string(line_of(more, row_150)) + ": ";
+  expect_error(more, "bad.pcd", line + "PCD: too many values (12; the fields need 11)");
+  last.insert(good.rfind(' '), " 5");  // the last row: nothing after it to go wrong
+  expect_error(last, "bad.pcd",
+               "bad.pcd:" + std::to_string(line_of(good, good.size() - 1)) + ": PCD: too many values (12;");
 }
 
 TEST(AsciiStream, MappedFilesGiveTheSamePoints) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 
 #include "io_test_util.h"
 #include "pcsketch/io/decimate.h"
@@ -92,6 +93,36 @@ TEST(XyzStream, BudgetDecidedOnTheExactCount) {
   const ReadResult counted = read_point_cloud_from_memory(short_first, "s.xyz", options);
   EXPECT_FALSE(counted.decimation.has_value());
   expect_same_cloud(counted.cloud, read_point_cloud_from_memory(short_first, "s.xyz").cloud);
+}
+
+// The count estimate takes the shortest of the first 1,024 lines; here they are long (17-digit values) and the rest
+// short, so it is under the budget while the rows are over it. The decision must not trust it: the file is streamed
+// (never held whole), with the points of the whole read thinned by the same cell.
+TEST(XyzStream, LongFirstLinesDoNotHideRowsOverTheBudget) {
+  std::string bytes;
+  std::size_t shortest = std::string::npos;
+  for (const test::SpherePoint& s : test::noisy_sphere(1024)) {
+    const Vec3d p = s.radius * s.direction;
+    const std::string line = text_of(p.x()) + " " + text_of(p.y()) + " " + text_of(p.z()) + "\n";
+    shortest = std::min(shortest, line.size());
+    bytes += line;
+  }
+  for (std::size_t i = 0; i < 20000; ++i)  // a 100 x 200 grid at z = 0.5, spacing 0.01: "0.37 1.99 0.5"
+    bytes += text_of(double(i % 100) / 100) + " " + text_of(double(i / 100) / 100) + " 0.5\n";
+  const std::size_t rows = 21024;
+  ASSERT_LT(bytes.size() / shortest, 8000u);  // the estimate
+  ReadOptions options;
+  options.decimate.resolution = OutputResolution{.width = 40, .height = 40, .budget_points = 8000};
+  options.stream_chunk_points = 1000;
+  const ReadResult over = read_point_cloud_from_memory(bytes, "long_first.xyz", options);
+  ASSERT_TRUE(over.decimation.has_value());
+  EXPECT_TRUE(over.decimation->streamed);
+  EXPECT_EQ(over.points_in_file, rows);
+  EXPECT_NE(over.decimation->reason.find("21024 points, over the 8000 budget"), std::string::npos)
+      << over.decimation->reason;
+  ReadResult whole = read_point_cloud_from_memory(bytes, "long_first.xyz");
+  decimate(whole.cloud, {.voxel = over.decimation->cell});
+  expect_same_cloud(over.cloud, whole.cloud);
 }
 
 TEST(XyzStream, MalformedFilesFailAsInTheWholeRead) {
