@@ -240,7 +240,9 @@ std::vector<float> spacing_units(const neighbourhood::Neighbourhoods& neighbourh
   if (!adaptive || neighbourhoods.size() != n || neighbourhoods.k == 0) return std::vector<float>(n, h);
   const std::size_t k = neighbourhoods.k;
   std::vector<float> far(n);
-  for (std::size_t i = 0; i < n; ++i) far[i] = neighbourhoods.distances_of(i)[k - 1];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) far[i] = neighbourhoods.distances_of(i)[k - 1];
+  });
   std::vector<float> sorted = far;
   const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(n / 2);
   std::nth_element(sorted.begin(), mid, sorted.end());
