@@ -35,9 +35,8 @@ TEST(PointGrid, CentreFirstVisitsTheSamePointsAndStopsAlike) {
     // A stop after m points: the scan ends early exactly when the radius holds m of them.
     const std::size_t m = 1 + static_cast<std::size_t>(trial % 40);
     std::size_t seen = 0;
-    const bool ran_to_end = grid.for_each_within_until_centre_first(q, radius, [&](std::uint32_t, float) {
-      return ++seen < m;
-    });
+    const bool ran_to_end =
+        grid.for_each_within_until_centre_first(q, radius, [&](std::uint32_t, float) { return ++seen < m; });
     EXPECT_EQ(ran_to_end, in_order.size() < m) << "trial " << trial;
   }
 }
