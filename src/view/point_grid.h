@@ -81,7 +81,7 @@ class PointGrid {
   }
 
   /// As for_each_within_until, but q's own cell first: where f stops once points lie all around q (the outline
-  /// test), they are found sooner. The order of the other cells is kept; only the set visited is deterministic.
+  /// test), they are found sooner. The same points in another order: a scan that runs to the end sees them all.
   template <class F>
   bool for_each_within_until_centre_first(const Vec& q, float radius, F&& f) const {
     return scan(q, radius, f, true);
@@ -107,8 +107,8 @@ class PointGrid {
       }
       return true;
     };
-    // q's cell lies between a and b: the floors are monotone.
-    const std::size_t centre = centre_first ? linear(coords_floor(q)) : total_cells();
+    // q's cell lies between a and b: the floors are monotone (truncation and floor agree once clamped at 0).
+    const std::size_t centre = centre_first ? linear(coords(q)) : total_cells();
     if (centre_first && !scan_cell(centre)) return false;
     Eigen::Matrix<std::int64_t, D, 1> c = a;
     for (;;) {
@@ -124,13 +124,6 @@ class PointGrid {
   }
 
   std::size_t total_cells() const { return start_.size() - 1; }
-  /// The cell of q as the query's box computes it (floor, clamped), not as the build does (truncation).
-  Eigen::Matrix<std::int64_t, D, 1> coords_floor(const Vec& q) const {
-    Eigen::Matrix<std::int64_t, D, 1> c;
-    for (int d = 0; d < D; ++d)
-      c[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((q[d] - lo_[d]) / cell_)), 0, dims_[d] - 1);
-    return c;
-  }
   Eigen::Matrix<std::int64_t, D, 1> coords(const Vec& p) const {
     Eigen::Matrix<std::int64_t, D, 1> c;
     for (int d = 0; d < D; ++d)
