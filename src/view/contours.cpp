@@ -240,7 +240,9 @@ std::vector<float> spacing_units(const neighbourhood::Neighbourhoods& neighbourh
   if (!adaptive || neighbourhoods.size() != n || neighbourhoods.k == 0) return std::vector<float>(n, h);
   const std::size_t k = neighbourhoods.k;
   std::vector<float> far(n);
-  for (std::size_t i = 0; i < n; ++i) far[i] = neighbourhoods.distances_of(i)[k - 1];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) far[i] = neighbourhoods.distances_of(i)[k - 1];
+  });
   std::vector<float> sorted = far;
   const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(n / 2);
   std::nth_element(sorted.begin(), mid, sorted.end());
@@ -344,7 +346,14 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       if (((octants | (octants >> 4)) & 0xFu) != 0xFu) return false;
       return !gap_exceeds(dirs, threshold);
     };
-    // Queries run in the grid's cell order so that neighbouring queries scan the same cells (cache).
+    // The pre-filter runs in index order, where the 3D neighbourhoods are close in memory; the 2D queries run in
+    // the grid's cell order so that neighbouring queries scan the same cells (cache).
+    std::vector<char> inside(valid.size(), 0);
+    if (use_3d_neighbours)
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, valid.size(), 256), [&](const auto& range) {
+        std::vector<Vec2f> dirs;
+        for (std::size_t v = range.begin(); v != range.end(); ++v) inside[v] = surrounded(valid[v], dirs);
+      });
     const std::vector<std::uint32_t>& grid_order = grid.order();
     pcsketch::detail::parallel_chunks(valid.size(), o.progress, "contour points", [&](std::size_t begin, std::size_t end) {
       std::vector<std::pair<float, std::uint32_t>> near;
@@ -352,18 +361,20 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
       std::vector<float> angles;
       for (std::size_t g = begin; g != end; ++g) {
         const std::size_t v = grid_order[g];
+        if (inside[v]) continue;
         const float r = o.radius_factor * cp.spacing_px[valid[v]];
-        if (use_3d_neighbours && surrounded(valid[v], dirs)) continue;
-        near.clear();
-        // Points within r filling all eight 45° sectors: no gap reaches 90°, the scan stops (interior).
+        // Points within r filling all eight 45° sectors: no gap reaches 90° (interior). The scan for them starts
+        // at v's own cell, which most often settles it; the points are then gathered in the grid's order.
         unsigned filled = 0;
-        const bool scanned = grid.for_each_within_until(uv[v], r, [&](std::uint32_t j, float d2) {
-          if (d2 <= 1e-8f * r * r) return true;  // self and exact duplicates carry no direction
-          near.emplace_back(d2, j);
-          filled |= octant_bit(uv[j] - uv[v]);
-          return !(octant_shortcut && filled == 0xFFu);
+        if (octant_shortcut && !grid.for_each_within_until_centre_first(uv[v], r, [&](std::uint32_t j, float d2) {
+              if (d2 > 1e-8f * r * r) filled |= octant_bit(uv[j] - uv[v]);  // self and duplicates: no direction
+              return filled != 0xFFu;
+            }))
+          continue;
+        near.clear();
+        grid.for_each_within(uv[v], r, [&](std::uint32_t j, float d2) {
+          if (d2 > 1e-8f * r * r) near.emplace_back(d2, j);
         });
-        if (!scanned) continue;
         if (near.size() > o.k) {
           std::nth_element(near.begin(), near.begin() + static_cast<std::ptrdiff_t>(o.k), near.end());
           near.resize(o.k);

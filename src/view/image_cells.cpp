@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <utility>
+#include <vector>
 
 namespace pcsketch::view::detail {
 namespace {
@@ -32,10 +33,11 @@ std::vector<std::uint32_t> first_in_image_cells(const std::vector<Vec3f>& projec
     }
   });
   tbb::parallel_sort(keyed.begin(), keyed.end());  // (cell, index) pairs are unique: the same order on any run
-  valid.clear();
+  // Marks, then one pass in index order: the kept indices come out increasing without a second sort.
+  std::vector<char> first(projected.size(), 0);
   for (std::size_t k = 0; k < keyed.size(); ++k)
-    if (k == 0 || keyed[k].first != keyed[k - 1].first) valid.push_back(keyed[k].second);
-  std::sort(valid.begin(), valid.end());
+    if (k == 0 || keyed[k].first != keyed[k - 1].first) first[keyed[k].second] = 1;
+  std::erase_if(valid, [&](std::uint32_t i) { return !first[i]; });
   return valid;
 }
 

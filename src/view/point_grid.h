@@ -77,6 +77,19 @@ class PointGrid {
   /// As for_each_within, stopping as soon as f returns false. Returns whether the scan ran to the end.
   template <class F>
   bool for_each_within_until(const Vec& q, float radius, F&& f) const {
+    return scan(q, radius, f, false);
+  }
+
+  /// As for_each_within_until, but q's own cell first: where f stops once points lie all around q (the outline
+  /// test), they are found sooner. The same points in another order: a scan that runs to the end sees them all.
+  template <class F>
+  bool for_each_within_until_centre_first(const Vec& q, float radius, F&& f) const {
+    return scan(q, radius, f, true);
+  }
+
+ private:
+  template <class F>
+  bool scan(const Vec& q, float radius, F& f, bool centre_first) const {
     if (sorted_.empty()) return true;
     const float r2 = radius * radius;
     Eigen::Matrix<std::int64_t, D, 1> a, b;
@@ -87,13 +100,20 @@ class PointGrid {
                                       dims_[d] - 1);
       if (q[d] + radius < lo_[d] || q[d] - radius > lo_[d] + cell_ * static_cast<float>(dims_[d])) return true;
     }
-    Eigen::Matrix<std::int64_t, D, 1> c = a;
-    for (;;) {
-      const std::size_t cell = linear(c);
+    const auto scan_cell = [&](std::size_t cell) {
       for (std::uint32_t k = start_[cell]; k < start_[cell + 1]; ++k) {
         const float d2 = (sorted_[k] - q).squaredNorm();
         if (d2 <= r2 && !f(order_[k], d2)) return false;
       }
+      return true;
+    };
+    // q's cell lies between a and b: the floors are monotone (truncation and floor agree once clamped at 0).
+    const std::size_t centre = centre_first ? linear(coords(q)) : total_cells();
+    if (centre_first && !scan_cell(centre)) return false;
+    Eigen::Matrix<std::int64_t, D, 1> c = a;
+    for (;;) {
+      const std::size_t cell = linear(c);
+      if (cell != centre && !scan_cell(cell)) return false;
       int d = 0;
       while (d < D && ++c[d] > b[d]) {
         c[d] = a[d];
@@ -103,7 +123,7 @@ class PointGrid {
     }
   }
 
- private:
+  std::size_t total_cells() const { return start_.size() - 1; }
   Eigen::Matrix<std::int64_t, D, 1> coords(const Vec& p) const {
     Eigen::Matrix<std::int64_t, D, 1> c;
     for (int d = 0; d < D; ++d)
