@@ -129,9 +129,9 @@ std::optional<StreamHeader> xyz_stream_header(const Source& source) {
   if (!reads_as_xyz(source)) return std::nullopt;
   const auto state = std::make_shared<XyzState>();
   StreamHeader header;
-  const RowCount rows = estimate_rows(source);
-  header.count = rows.estimate;
-  header.max_count = rows.most;
+  const RowCount estimated = estimate_rows(source);
+  header.count = estimated.estimate;
+  header.max_count = estimated.most;
   header.format = xyz_format(source.path);
   header.stream = [state](const Source& src, std::size_t chunk_points, PointSink& sink) {
     stream_xyz(*state, src, chunk_points, sink);
