@@ -41,18 +41,19 @@ std::optional<Vec3f> candidate_gap(const std::vector<Vec3f>& positions, const st
   Vec3f u, v;
   tangent_frame(n, u, v);
   dirs.clear();
-  unsigned octants = 0;
+  std::uint16_t sectors = 0;
   for (const std::uint32_t j : nbh.of(i)) {
     const Vec3f d = positions[j] - positions[i];
     const Vec2f c(d.dot(u), d.dot(v));
     if (c.squaredNorm() > 1e-12f * d.squaredNorm() && c.squaredNorm() > 0) {
       dirs.push_back(c);
-      octants |= pcsketch::detail::octant_bit(c);
+      sectors |= pcsketch::detail::sector_bit(c);
     }
   }
-  // All eight 45° sectors hold a neighbour: no gap reaches 90°, and most points settle here without sorting.
-  if (octants == 0xFFu && o.gap_threshold_deg >= 90.f) return std::nullopt;
-  if (!pcsketch::detail::gap_exceeds(dirs, o.gap_threshold_deg * kDegToRad)) return std::nullopt;
+  // Neighbours all round leave no run of empty 22.5° sectors as wide as the gap: most points settle here unsorted.
+  const float threshold = o.gap_threshold_deg * kDegToRad;
+  if (pcsketch::detail::sectors_rule_out_gap(sectors, threshold)) return std::nullopt;
+  if (!pcsketch::detail::gap_exceeds(dirs, threshold)) return std::nullopt;
   const Vec2f b = pcsketch::detail::largest_gap(angles, dirs).second;
   const float reach = nbh.distances[i * nbh.k + nbh.k - 1];
   for (const Vec2f& c : dirs)
