@@ -7,9 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "core/angular_gap.h"
 #include "core/parallel_chunks.h"
@@ -41,18 +44,19 @@ std::optional<Vec3f> candidate_gap(const std::vector<Vec3f>& positions, const st
   Vec3f u, v;
   tangent_frame(n, u, v);
   dirs.clear();
-  unsigned octants = 0;
+  std::uint16_t sectors = 0;
   for (const std::uint32_t j : nbh.of(i)) {
     const Vec3f d = positions[j] - positions[i];
     const Vec2f c(d.dot(u), d.dot(v));
     if (c.squaredNorm() > 1e-12f * d.squaredNorm() && c.squaredNorm() > 0) {
       dirs.push_back(c);
-      octants |= pcsketch::detail::octant_bit(c);
+      sectors |= pcsketch::detail::sector_bit(c);
     }
   }
-  // All eight 45° sectors hold a neighbour: no gap reaches 90°, and most points settle here without sorting.
-  if (octants == 0xFFu && o.gap_threshold_deg >= 90.f) return std::nullopt;
-  if (!pcsketch::detail::gap_exceeds(dirs, o.gap_threshold_deg * kDegToRad)) return std::nullopt;
+  // Neighbours all round leave no run of empty 22.5° sectors as wide as the gap: most points settle here unsorted.
+  const float threshold = o.gap_threshold_deg * kDegToRad;
+  if (pcsketch::detail::sectors_rule_out_gap(sectors, threshold)) return std::nullopt;
+  if (!pcsketch::detail::gap_exceeds(dirs, threshold)) return std::nullopt;
   const Vec2f b = pcsketch::detail::largest_gap(angles, dirs).second;
   const float reach = nbh.distances[i * nbh.k + nbh.k - 1];
   for (const Vec2f& c : dirs)
@@ -61,6 +65,17 @@ std::optional<Vec3f> candidate_gap(const std::vector<Vec3f>& positions, const st
   for (const std::uint32_t j : nbh.of(i))
     if (std::abs(normals[j].dot(n)) < cos_fold) return std::nullopt;
   return Vec3f(b.x() * u + b.y() * v);
+}
+
+/// std::sqrt(squared) <= limit, decided as it would be, with the root taken only within 1e-5 of the limit (where the
+/// rounding of the squares could matter; it is 1e-7).
+bool root_at_most(float squared, float limit) {
+  const float limit2 = limit * limit;
+  if (limit2 >= std::numeric_limits<float>::min()) {
+    if (squared < limit2 * (1 - 1e-5f)) return true;
+    if (squared > limit2 * (1 + 1e-5f)) return false;
+  }
+  return std::sqrt(squared) <= limit;
 }
 
 /// What lies in the cone around a candidate's gap (see BoundaryOptions::confirm_factor): the distance of the nearest
@@ -82,10 +97,11 @@ class Cone {
     return false;
   }
 
-  /// Nearest distance from i of a point in its cone, out to confirm_factor · r; infinity if there is none.
+  /// Nearest distance from i of a point in its cone, out to confirm_factor · r; infinity if there is none. The
+  /// smallest needs no order: the points come unsorted.
   float nearest(std::size_t i, const Vec3f& bisector, const neighbourhood::KdTree& tree,
-                std::vector<std::uint32_t>& found, std::vector<float>& distances) const {
-    tree.radius(positions_[i], factor_ * reach(i), found, distances);
+                std::vector<std::uint32_t>& found) const {
+    tree.radius_unsorted(positions_[i], factor_ * reach(i), found);
     float best = kNone;
     for (const std::uint32_t q : found) best = std::min(best, distance_inside(i, bisector, q));
     return best;
@@ -99,14 +115,18 @@ class Cone {
   static constexpr float kNone = std::numeric_limits<float>::infinity();
 
  private:
+  /// q's distance from i if q lies in i's cone beyond r, else kNone. The tests that most often fail come first, on
+  /// squared lengths: most of the points asked lie within r, or behind i.
   float distance_inside(std::size_t i, const Vec3f& bisector, std::uint32_t q) const {
     const Vec3f d = positions_[q] - positions_[i];
-    const float distance = d.norm(), r = reach(i);
-    if (distance <= r || distance > factor_ * r) return kNone;
+    const float squared = d.squaredNorm(), r = reach(i);
+    if (root_at_most(squared, r) || !root_at_most(squared, factor_ * r)) return kNone;
     const Vec3f& n = normals_[i];
     const Vec3f in_plane = d - d.dot(n) * n;
+    const float along = in_plane.dot(bisector);
+    if (cos_cone_ >= 0 && along <= 0) return kNone;  // then along > cos_cone_ · length fails
     const float length = in_plane.norm();
-    return std::abs(d.dot(n)) <= length && in_plane.dot(bisector) > cos_cone_ * length ? distance : kNone;
+    return std::abs(d.dot(n)) <= length && along > cos_cone_ * length ? std::sqrt(squared) : kNone;
   }
 
   const std::vector<Vec3f>& positions_;
@@ -122,73 +142,83 @@ std::vector<std::uint8_t> border_points(const std::vector<Vec3f>& positions, con
                                         const neighbourhood::Neighbourhoods& nbh, const BoundaryOptions& o,
                                         const neighbourhood::KdTree* given_tree) {
   const std::size_t n = positions.size();
-  std::vector<Vec3f> bisector(n, Vec3f::Zero());
   const Cone cone(positions, normals, nbh, o);
-  std::vector<std::uint8_t> open(n, 0);
+  // The candidates the two rings leave open and their gaps' bisectors, in any order: each is settled on its own.
+  std::vector<std::pair<std::uint32_t, Vec3f>> left;
+  std::mutex adding;
   // The candidates are most of the stage's time: their loop reports its progress.
   pcsketch::detail::parallel_chunks(n, o.progress, "boundaries", [&](std::size_t begin, std::size_t end) {
     std::vector<Vec2f> dirs;
     std::vector<float> angles;
+    std::vector<std::pair<std::uint32_t, Vec3f>> open;
     for (std::size_t i = begin; i != end; ++i)
-      if (const auto b = candidate_gap(positions, normals, nbh, i, o, dirs, angles)) {
-        bisector[i] = *b;
-        open[i] = !cone.filled_nearby(i, *b);
-      }
+      if (const auto b = candidate_gap(positions, normals, nbh, i, o, dirs, angles); b && !cone.filled_nearby(i, *b))
+        open.emplace_back(static_cast<std::uint32_t>(i), *b);
+    if (open.empty()) return;
+    const std::lock_guard lock(adding);
+    left.insert(left.end(), open.begin(), open.end());
   });
-  std::vector<std::uint32_t> left;
-  for (std::uint32_t i = 0; i < n; ++i)
-    if (open[i]) left.push_back(i);
-  if (left.empty()) return open;
+  std::vector<std::uint8_t> rim(n, 0);
+  if (left.empty()) return rim;
   std::optional<neighbourhood::KdTree> own_tree;
   const neighbourhood::KdTree& tree = given_tree ? *given_tree : own_tree.emplace(positions);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, left.size(), 64), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<std::uint32_t> found;
-    std::vector<float> distances;
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
-      const std::uint32_t i = left[c];
-      const float nearest = cone.nearest(i, bisector[i], tree, found, distances);
-      open[i] = nearest == Cone::kNone                               ? kBorder
-                : nearest > Cone::kHoleFactor * cone.reach(i) ? kHole
-                                                              : std::uint8_t{0};
+      const auto& [i, bisector] = left[c];
+      const float nearest = cone.nearest(i, bisector, tree, found);
+      rim[i] = nearest == Cone::kNone                               ? kBorder
+               : nearest > Cone::kHoleFactor * cone.reach(i) ? kHole
+                                                             : std::uint8_t{0};
     }
   });
-  return open;
+  return rim;
 }
 
+/// One connected set of rim points.
+struct RimSet {
+  Eigen::AlignedBox3f box;
+  std::uint32_t points = 0;
+  bool bordered = false;  ///< holds a border point, not only a hole's rim
+};
+
 /// The points of `rim` (border or hole rims) in connected sets that hold a border point and span at least
-/// `min_size` (largest side of their bounding box); `small` counts the other sets. Sets of fewer than kMinRimPoints
-/// are cleared from `rim`: the rim of a hole a cone wide holds dozens.
-std::vector<std::uint8_t> drawn_sets(const std::vector<Vec3f>& positions, const neighbourhood::Neighbourhoods& nbh,
-                                     std::vector<std::uint8_t>& rim, float min_size, std::size_t& small) {
-  const std::size_t n = positions.size();
-  small = 0;
-  std::vector<std::uint8_t> drawn(n, 0);
-  // A closed cloud usually has no rim point at all: no sets, boxes or counts to build.
-  if (std::none_of(rim.begin(), rim.end(), [](std::uint8_t r) { return r != 0; })) return drawn;
-  pcsketch::detail::Clusters sets(n);
-  for (std::uint32_t i = 0; i < n; ++i)
-    if (rim[i])
-      for (const std::uint32_t j : nbh.of(i))
-        if (rim[j]) sets.join(i, j);
-  std::vector<Eigen::AlignedBox3f> box(n);
-  std::vector<std::uint8_t> bordered(n, 0);
-  for (std::uint32_t i = 0; i < n; ++i)
-    if (rim[i]) {
-      box[sets.find(i)].extend(positions[i]);
-      bordered[sets.find(i)] |= rim[i] == kBorder;
-    }
-  const auto kept = [&](std::uint32_t root) { return bordered[root] && box[root].sizes().maxCoeff() >= min_size; };
-  std::vector<std::uint32_t> count(n, 0);
-  for (std::uint32_t i = 0; i < n; ++i) count[sets.find(i)] += rim[i] != 0;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (!rim[i]) continue;
-    const std::uint32_t root = sets.find(i);
-    if (count[root] < kMinRimPoints) {
-      rim[i] = 0;  // a stray mark: a random gap of the sampling, a change of density, not the rim of anything
-      continue;
-    }
-    if (root == i && !kept(root)) ++small;
-    drawn[i] = kept(root);
+/// `min_size` (largest side of their bounding box), ascending; `small` counts the other sets. Sets of fewer than
+/// kMinRimPoints are cleared from `rim`: the rim of a hole a cone wide holds dozens. Past the scan for them, only the
+/// rim points are visited (a closed cloud has few or none), numbered by their places among them.
+std::vector<std::uint32_t> drawn_sets(const std::vector<Vec3f>& positions, const neighbourhood::Neighbourhoods& nbh,
+                                      std::vector<std::uint8_t>& rim, float min_size, std::size_t& small) {
+  std::vector<std::uint32_t> points;
+  for (std::uint32_t i = 0; i < rim.size(); ++i)
+    if (rim[i]) points.push_back(i);
+  const auto place = std::make_unique_for_overwrite<std::uint32_t[]>(rim.size());  // read at rim points only
+  for (std::uint32_t p = 0; p < points.size(); ++p) place[points[p]] = p;
+  // Places ascend with the indices: a set's root is still its smallest point, and comes first in it.
+  pcsketch::detail::Clusters sets(points.size());
+  for (std::uint32_t p = 0; p < points.size(); ++p)
+    for (const std::uint32_t j : nbh.of(points[p]))
+      if (rim[j]) sets.join(p, place[j]);
+  std::vector<RimSet> records;
+  std::vector<std::uint32_t> set_of(points.size());
+  for (std::uint32_t p = 0; p < points.size(); ++p) {
+    const std::uint32_t root = sets.find(p);
+    if (root == p) records.emplace_back();
+    set_of[p] = root == p ? static_cast<std::uint32_t>(records.size() - 1) : set_of[root];
+    RimSet& set = records[set_of[p]];
+    set.box.extend(positions[points[p]]);
+    ++set.points;
+    set.bordered |= rim[points[p]] == kBorder;
+  }
+  const auto kept = [&](const RimSet& set) { return set.bordered && set.box.sizes().maxCoeff() >= min_size; };
+  small = static_cast<std::size_t>(std::count_if(
+      records.begin(), records.end(), [&](const RimSet& set) { return set.points >= kMinRimPoints && !kept(set); }));
+  std::vector<std::uint32_t> drawn;
+  for (std::uint32_t p = 0; p < points.size(); ++p) {
+    const RimSet& set = records[set_of[p]];
+    if (set.points < kMinRimPoints)
+      rim[points[p]] = 0;  // a stray mark: a random gap of the sampling, a change of density, not the rim of anything
+    else if (kept(set))
+      drawn.push_back(points[p]);
   }
   return drawn;
 }
@@ -215,15 +245,12 @@ Boundary find_boundaries(const std::vector<Vec3f>& positions, const std::vector<
   if (!options.enabled || n == 0 || neighbourhoods.k == 0) return result;
   result.border = border_points(positions, normals, neighbourhoods, options, tree);
 
-  const std::vector<std::uint8_t> drawn =
+  const std::vector<std::uint32_t> drawn =
       drawn_sets(positions, neighbourhoods, result.border, options.min_size_factor * spacing, result.small_holes);
+  result.border_points = drawn.size();
+  if (drawn.empty()) return result;
   std::vector<PointLabel> labels(n, PointLabel::None);
-  for (std::size_t i = 0; i < n; ++i)
-    if (drawn[i]) {
-      labels[i] = PointLabel::Ridge;
-      ++result.border_points;
-    }
-  if (result.border_points == 0) return result;
+  for (const std::uint32_t i : drawn) labels[i] = PointLabel::Ridge;
   TraceResult traced = trace_lines(positions, labels, std::vector<float>(n, 0.f), spacing, options.tracing);
   JoinResult joined = join_lines(std::move(traced.lines), traced.radius, spacing, options.joining);
   for (Polyline& line : joined.lines) {

@@ -1,9 +1,12 @@
-// gap_exceeds (a sieve over pseudo-angle bins, then sorted keys) against the largest gap measured with arctangents.
+// gap_exceeds (a sieve over pseudo-angle bins, then sorted keys) against the largest gap measured with arctangents,
+// and the sector pre-test that must never rule out a gap gap_exceeds finds.
 
 #include "core/angular_gap.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -68,6 +71,115 @@ TEST(AngularGap, ApproximateAngleWithinItsBound) {
     }
   }
   EXPECT_LT(worst, kApproxAngleError);
+}
+
+TEST(AngularGap, SectorBitFollowsTheAngle) {
+  constexpr double kStep = 2 * std::numbers::pi / 16;
+  std::uint32_t seen = 0;
+  const auto check = [&](double t, double r) {
+    const Vec2f d(static_cast<float>(r * std::cos(t)), static_cast<float>(r * std::sin(t)));
+    const std::uint16_t bit = sector_bit(d);
+    ASSERT_EQ(std::popcount(bit), 1) << "angle " << t;
+    const int s = std::countr_zero(bit);
+    seen |= 1u << s;
+    // The direction's own angle (after rounding to floats) lies in sector s, up to the rounding of its edges.
+    const double angle = std::atan2(double(d.y()), double(d.x()));
+    const double into = std::remainder(angle - s * kStep - kStep / 2, 2 * std::numbers::pi);
+    ASSERT_LE(std::abs(into), kStep / 2 + 1e-6) << "angle " << angle << " in sector " << s;
+  };
+  for (int i = 0; i < 100000; ++i)
+    for (const double r : {1e-20, 1.0, 1e20}) check(2 * std::numbers::pi * i / 100000.0, r);
+  // The edges themselves and just either side of them.
+  for (int e = 0; e < 16; ++e)
+    for (const double offset : {-1e-3, -1e-6, -1e-8, 0.0, 1e-8, 1e-6, 1e-3}) check(e * kStep + offset, 1.0);
+  EXPECT_EQ(seen, 0xFFFFu);
+  // One direction well inside a sector of each quadrant.
+  EXPECT_EQ(sector_bit(Vec2f(1.f, 0.2f)), 1u << 0);
+  EXPECT_EQ(sector_bit(Vec2f(-0.2f, 1.f)), 1u << 4);
+  EXPECT_EQ(sector_bit(Vec2f(-1.f, -0.2f)), 1u << 8);
+  EXPECT_EQ(sector_bit(Vec2f(0.2f, -1.f)), 1u << 12);
+}
+
+std::uint16_t sectors_of(std::span<const Vec2f> dirs) {
+  std::uint16_t filled = 0;
+  for (const Vec2f& d : dirs) filled |= sector_bit(d);
+  return filled;
+}
+
+Vec2f at(double angle) { return {static_cast<float>(std::cos(angle)), static_cast<float>(std::sin(angle))}; }
+
+/// A gap of `width` radians from `start` and directions spread over the rest of the circle, no two further apart than
+/// `step`; sometimes also on the sector edges there.
+std::vector<Vec2f> gap_of(std::mt19937& rng, double start, double width, double step) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec2f> dirs{at(start), at(start + width)};
+  const double end = start + 2 * std::numbers::pi;
+  for (double a = start + width + step * u(rng); a < end - 1e-9; a += step * u(rng)) {
+    const double edge = std::round(a / kSector) * kSector;
+    dirs.push_back(at(u(rng) < 0.2 && edge > start + width && edge < end ? edge : a));
+  }
+  std::shuffle(dirs.begin(), dirs.end(), rng);
+  return dirs;
+}
+
+TEST(AngularGap, SectorsNeverRuleOutAGapOverTheThreshold) {
+  std::mt19937 rng(12111);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int answers[2] = {};  // gap_exceeds' noes and yeses
+  for (const double degrees : {46.0, 60.0, 67.5, 90.0, 100.0, 112.5, 120.0, 135.0, 150.0, 180.0, 200.0, 337.5}) {
+    const float threshold = static_cast<float>(degrees) * kDeg;
+    for (int trial = 0; trial < 4000; ++trial) {
+      // The gap starts anywhere or on a sector edge (to within float rounding), and ends just over or under the
+      // threshold or anywhere about it.
+      const double edge = kSector * std::floor(16 * u(rng));
+      const double start = trial % 3 == 0 ? 2 * std::numbers::pi * u(rng) : edge + (u(rng) - 0.5) * 2e-6;
+      const double offsets[] = {-1e-2, -1e-4, -2e-6, 2e-6, 1e-4, 1e-2, (u(rng) - 0.5)};
+      const double width = threshold + offsets[trial % 7];
+      if (width <= 0 || width >= 2 * std::numbers::pi - 1e-3) continue;
+      const std::vector<Vec2f> dirs = gap_of(rng, start, width, std::min(width, 0.5) * 0.99);
+      const bool exceeds = gap_exceeds(dirs, threshold);
+      ASSERT_FALSE(exceeds && sectors_rule_out_gap(sectors_of(dirs), threshold))
+          << degrees << " deg, gap from " << start << " of " << width << " rad";
+      ++answers[exceeds];
+    }
+  }
+  // Both answers were asked many times.
+  EXPECT_GT(answers[0], 10000);
+  EXPECT_GT(answers[1], 10000);
+}
+
+TEST(AngularGap, SectorsRuleOutMostNeighbourhoods) {
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::vector<float> angles;
+  int settled_inside = 0;
+  // Even trials: round and whole neighbourhoods (inside a surface); odd: foreshortened or cut by a border.
+  for (int trial = 0; trial < 20000; ++trial) {
+    const bool inside = trial % 2 == 0;
+    const std::vector<Vec2f> dirs = directions(rng, 16, inside ? 1.f : 0.2f + u(rng), inside ? 0.f : 4.f * u(rng));
+    const bool out = sectors_rule_out_gap(sectors_of(dirs), 120 * kDeg);
+    ASSERT_FALSE(out && gap_exceeds(dirs, 120 * kDeg)) << "trial " << trial;
+    // Four empty sectors in a row are a gap of 90° at least: every gap under it is settled.
+    const float gap = largest_gap(angles, dirs).first;
+    ASSERT_TRUE(out || gap > 90 * kDeg - 1e-4f) << "trial " << trial << ", gap " << gap / kDeg << " deg";
+    settled_inside += inside && out;
+  }
+  // Most neighbourhoods inside a surface are settled by the sectors, not sorted (the eight octants settled a third).
+  EXPECT_GT(settled_inside, 10000 * 8 / 10);
+}
+
+TEST(AngularGap, SectorRunsAreAsLongAsTheThresholdNeeds) {
+  // 120°: a gap over it holds 4 whole empty sectors (5.33 sectors wide, less the two it cuts).
+  const float threshold = 120 * kDeg;
+  EXPECT_TRUE(sectors_rule_out_gap(0xFFFFu, threshold));
+  EXPECT_TRUE(sectors_rule_out_gap(static_cast<std::uint16_t>(~0b0111'0000u), threshold));   // 3 empty: no gap
+  EXPECT_FALSE(sectors_rule_out_gap(static_cast<std::uint16_t>(~0b1111'0000u), threshold));  // 4 empty: maybe
+  // Runs across bit 15 to bit 0 count too.
+  EXPECT_FALSE(sectors_rule_out_gap(static_cast<std::uint16_t>(~0b1100'0000'0000'0011u), threshold));
+  EXPECT_TRUE(sectors_rule_out_gap(static_cast<std::uint16_t>(~0b1000'0000'0000'0011u), threshold));
+  // Thresholds of two sectors or less: a gap may hide in the edges of any two sectors.
+  EXPECT_FALSE(sectors_rule_out_gap(0xFFFFu, 45 * kDeg));
+  EXPECT_FALSE(sectors_rule_out_gap(0u, 350 * kDeg));
 }
 
 TEST(AngularGap, FewDirections) {

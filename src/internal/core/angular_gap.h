@@ -96,6 +96,39 @@ inline bool gap_exceeds(std::span<const Vec2f> dirs, float threshold) {
   return false;
 }
 
+/// Width of sector_bit's sixteen sectors, radians.
+inline constexpr float kSector = 2 * kGapPi / 16;
+
+/// Bit of the 22.5° sector holding direction c (not zero), numbered counter-clockwise from +x: bit s holds the
+/// angles from s · 22.5° to (s + 1) · 22.5°, each edge going to one side or the other. The quarter of the quadrant
+/// by comparisons with the diagonal and tan 22.5°, then reflected by the signs: no angle.
+inline std::uint16_t sector_bit(const Vec2f& c) {
+  constexpr float kTan = 0.41421356f;  // tan 22.5°
+  const float ax = std::abs(c.x()), ay = std::abs(c.y());
+  const unsigned q = unsigned{ay >= kTan * ax} + unsigned{ay >= ax} + unsigned{ax <= kTan * ay};  // 0 to 3 from +x
+  // Reflections by the sign bits: x < 0 gives 7 − q = q ^ 7, then y < 0 gives 15 − s = s ^ 15. The compiler made
+  // branches of `(c.x() < 0) * …`, and the signs are random from one direction to the next: the boundary candidates'
+  // loop took twice the time. A zero of either sign lies on an edge, where either side will do.
+  const unsigned x_negative = std::bit_cast<std::uint32_t>(c.x()) >> 31;
+  const unsigned y_negative = std::bit_cast<std::uint32_t>(c.y()) >> 31;
+  return static_cast<std::uint16_t>(1u << (q ^ (7 * x_negative) ^ (15 * y_negative)));
+}
+
+/// True when the sectors `filled` (the sector_bit of every direction) prove that no gap exceeds `threshold`, so
+/// that gap_exceeds would say no. A gap wider than the threshold holds floor(threshold / 22.5°) − 1 whole sectors
+/// in a row (the sectors it cuts at its ends may hold its end directions): where the empty sectors make no such
+/// run there is no such gap. The margin, far over the rounding of the sector edges and of gap_exceeds' cross and
+/// dot products (about 1e-6 rad), keeps the answer exact.
+inline bool sectors_rule_out_gap(std::uint16_t filled, float threshold) {
+  constexpr float kMargin = 1e-3f;
+  const int run = static_cast<int>(std::floor((threshold - kMargin) / kSector)) - 1;
+  if (run < 1) return false;
+  const auto empty = static_cast<std::uint16_t>(~filled);
+  std::uint16_t starts = empty;  // bit s: sectors s to s + r all empty
+  for (int r = 1; r < run && starts != 0; ++r) starts &= std::rotr(empty, r);
+  return starts == 0;
+}
+
 /// Bit of the 45° sector holding direction c: quadrant q (by signs) is bit q, or bit q + 4 past its diagonal.
 inline unsigned octant_bit(const Vec2f& c) {
   return 1u << ((c.x() >= 0 ? 0 : 1) + (c.y() >= 0 ? 0 : 2) + (std::abs(c.x()) >= std::abs(c.y()) ? 0 : 4));
