@@ -35,13 +35,17 @@ struct Condition {
   double noise = 0;      ///< σ, fraction of the diagonal
   double outliers = 0;   ///< fraction of n
   std::size_t clump = 1;
+  /// Only the samples whose face looks towards the first view's camera: a scan from one side, whose border is the
+  /// outline and the rims of that view. Scored from that view only, contours and borders together.
+  bool one_side = false;
 };
 const Condition kConditions[] = {{"clean", 0, 0, 1},
                                  {"0.1%", 0.001, 0, 1},
                                  {"0.2%", 0.002, 0, 1},
                                  {"1% outliers", 0, 0.01, 1},
                                  {"2% clumps", 0, 0.02, 20},
-                                 {"0.1% + 1% outl.", 0.001, 0.01, 1}};
+                                 {"0.1% + 1% outl.", 0.001, 0.01, 1},
+                                 {"one side", 0, 0, 1, true}};
 
 /// Directions of sight: the paper's +z and four oblique ones, none parallel to the default up (+y).
 const Vec3d kViews[] = {{0, 0, 1}, {1, 0.15, 0.6}, {1, 1, 1}, {-1, 0.3, -0.5}, {0.3, -0.6, 1}};
@@ -51,11 +55,18 @@ constexpr float kTolerancePx = 3.f;
 
 
 /// Scores the visible strokes of `kind`; with `drawn_only`, the copies fused into another line (not painted) are left
-/// out, so a ridge drawn as the contour along it counts for the contour only.
-nlohmann::json score(Drawing drawing, LineKind kind, const std::vector<Vec2f>& truth, bool drawn_only) {
+/// out, so a ridge drawn as the contour along it counts for the contour only; `with_border` scores the boundary
+/// strokes with them.
+nlohmann::json score(Drawing drawing, LineKind kind, const std::vector<Vec2f>& truth, bool drawn_only,
+                     bool with_border = false) {
   if (truth.empty()) return nullptr;
   if (drawn_only) std::erase_if(drawing.strokes, [](const Stroke& s) { return s.fused_into.has_value(); });
-  const test::LineMatch m = test::match_lines(test::sample_visible_strokes(drawing, kind), truth, kTolerancePx);
+  std::vector<Vec2f> drawn = test::sample_visible_strokes(drawing, kind);
+  if (with_border) {  // an open scan's border is where its outline and rims are
+    const std::vector<Vec2f> border = test::sample_visible_strokes(drawing, LineKind::Boundary);
+    drawn.insert(drawn.end(), border.begin(), border.end());
+  }
+  const test::LineMatch m = test::match_lines(drawn, truth, kTolerancePx);
   return {m.precision, m.recall};
 }
 
@@ -65,8 +76,17 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
   PointCloud cloud = io::sample_mesh(mesh, {.n = n,
                                             .noise_sigma_factor = c.noise,
                                             .seed = 2024,
+                                            .keep_normals = c.one_side,
                                             .outlier_fraction = c.outliers,
                                             .outlier_clump = c.clump});
+  if (c.one_side) {
+    std::vector<std::uint32_t> facing;
+    for (std::uint32_t i = 0; i < cloud.size(); ++i)
+      if (cloud.normals[i].cast<double>().dot(kViews[0]) < 0) facing.push_back(i);
+    keep_points(cloud, facing);
+    cloud.normals.clear();  // a raw scan's
+    views = 1;
+  }
   shuffle(cloud, 2024);
   std::size_t outliers = 0;
   for (const std::uint32_t s : cloud.source_index) outliers += s == io::kOutlier;
@@ -84,7 +104,7 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
     const view::Camera cam = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera);
     const test::MeshSharpEdges sharp = test::mesh_sharp_edges(mesh, cam, kSharpDegrees);
     const Drawing& d = result.drawing;
-    per_view.push_back({{"contour", score(d, LineKind::Contour, test::mesh_contours(mesh, cam).visible, drawn_only)},
+    per_view.push_back({{"contour", score(d, LineKind::Contour, test::mesh_contours(mesh, cam).visible, drawn_only, c.one_side)},
                         {"ridge", score(d, LineKind::Ridge, sharp.convex.visible, drawn_only)},
                         {"valley", score(d, LineKind::Valley, sharp.concave.visible, drawn_only)}});
   }

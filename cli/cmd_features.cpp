@@ -11,6 +11,7 @@
 #include "pcsketch/core/atomic_file.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/differential/surface.h"
+#include "pcsketch/features/boundary_lines.h"
 #include "pcsketch/features/ridge_valley_lines.h"
 #include "pcsketch/io/ply.h"
 #include "pcsketch/io/read_cloud.h"
@@ -20,15 +21,15 @@
 namespace pcsketch::cli {
 namespace {
 
-/// `label` of the points left out as outliers (0–2 are features::PointLabel).
-constexpr std::uint8_t kOutlierLabel = 3;
+/// `label` of the points left out as outliers and of the points on a drawn border (0–2 are features::PointLabel).
+constexpr std::uint8_t kOutlierLabel = 3, kBorderLabel = 4;
 
 struct FeaturesArgs {
   std::string in_path;
   std::string out_path;
   std::string lines_path;
   io::ReadOptions read;
-  DrawOptions options;  ///< only surface, features and max_memory_gb are used (the flags shared with draw)
+  DrawOptions options;  ///< only surface, features, boundary and max_memory_gb are used (the flags shared with draw)
   bool ascii = false;
 };
 
@@ -62,9 +63,14 @@ PointCloud with_outliers(const PointCloud& cloud, const PointCloud& outliers) {
 }
 
 void write_lines_json(const std::string& path, const PointCloud& cloud, const differential::Surface& surface,
-                      const features::RidgeValleyLines& result, const FeaturesArgs& args) {
+                      const features::RidgeValleyLines& result, const features::Boundary& boundary,
+                      const FeaturesArgs& args) {
   nlohmann::json lines = nlohmann::json::array();
-  for (const Polyline& line : result.lines) {
+  std::vector<const Polyline*> all;
+  for (const Polyline& line : result.lines) all.push_back(&line);
+  for (const Polyline& line : boundary.lines) all.push_back(&line);
+  for (const Polyline* each : all) {
+    const Polyline& line = *each;
     nlohmann::json points = nlohmann::json::array();
     for (const Vec3f& p : line.points) {
       const Vec3d w = cloud.origin + p.cast<double>();
@@ -89,7 +95,9 @@ void write_lines_json(const std::string& path, const PointCloud& cloud, const di
                               {"valley_threshold", d.valley_threshold},
                               {"ridge_points", d.ridge_points},
                               {"valley_points", d.valley_points},
+                              {"border_points", boundary.border_points},
                               {"parameters", options::to_json(args.options)["features"]},
+                              {"boundary_parameters", options::to_json(args.options)["boundary"]},
                               {"timings_s",
                                {{"detection", result.timings.detection},
                                 {"tracing", result.timings.tracing},
@@ -140,13 +148,22 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   features_options.progress = progress;
   const features::RidgeValleyLines result = features::extract_ridge_valley_lines(cloud, surface, features_options);
   print_warnings(global, result.warnings);
+  features::BoundaryOptions boundary_options = args.options.boundary;
+  boundary_options.progress = progress;
+  const features::Boundary boundary = features::find_boundaries(cloud.positions, cloud.normals,
+                                                                surface.neighbourhoods, surface.spacing,
+                                                                boundary_options);
 
-  // Written in the file's point order, so the scalar fields line up with the input cloud; outliers get label 3.
+  // Written in the file's point order, so the scalar fields line up with the input cloud; outliers get label 3, the
+  // points of a drawn border 4 (a ridge at a scan's edge is the edge).
   PointCloud out = with_outliers(cloud, surface.outliers);
   const std::size_t removed = surface.outliers.size();
   std::vector<float> k1 = surface.curvature.k1, k2 = surface.curvature.k2, ki = result.detection.feature_curvature;
   std::vector<std::uint8_t> labels(cloud.size());
-  for (std::size_t i = 0; i < labels.size(); ++i) labels[i] = static_cast<std::uint8_t>(result.detection.labels[i]);
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    labels[i] = !boundary.border.empty() && boundary.border[i] == 1
+                    ? kBorderLabel
+                    : static_cast<std::uint8_t>(result.detection.labels[i]);
   for (std::vector<float>* values : {&k1, &k2, &ki}) values->resize(out.size(), 0.f);
   labels.resize(out.size(), kOutlierLabel);
   k1 = in_file_order(k1, out.source_index);
@@ -161,21 +178,22 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   io::PlyWriteOptions write{.format = args.ascii ? io::PlyFormat::Ascii : io::PlyFormat::BinaryLittleEndian};
   write.comments.push_back("pcsketch features " + args.in_path + ": k1 >= k2 principal curvatures (convex > 0), "
                            "k_feature = the one of larger magnitude, label 0 none 1 ridge 2 valley 3 outlier "
-                           "(left out of the analysis)");
+                           "(left out of the analysis) 4 border of an open scan");
   io::write_ply(args.out_path, out,
                 {{"k1", std::span<const float>(k1)},
                  {"k2", std::span<const float>(k2)},
                  {"k_feature", std::span<const float>(ki)},
                  {"label", std::span<const std::uint8_t>(labels)}},
                 write);
-  if (!args.lines_path.empty()) write_lines_json(args.lines_path, cloud, surface, result, args);
+  if (!args.lines_path.empty()) write_lines_json(args.lines_path, cloud, surface, result, boundary, args);
 
   std::size_t ridges = 0;
   for (const Polyline& l : result.lines) ridges += l.kind == LineKind::Ridge;
   std::printf("%zu points (%zu outliers left out), h = %g: %zu ridge points, %zu valley points; %zu ridge lines, "
-              "%zu valley lines (%zu joins, %zu short lines dropped)\n",
+              "%zu valley lines (%zu joins, %zu short lines dropped); %zu border points, %zu boundary lines\n",
               cloud.size(), removed, static_cast<double>(surface.spacing), result.detection.ridge_points,
-              result.detection.valley_points, ridges, result.lines.size() - ridges, result.joins, result.dropped);
+              result.detection.valley_points, ridges, result.lines.size() - ridges, result.joins, result.dropped,
+              boundary.border_points, boundary.lines.size());
   std::printf("detection %.3f s, tracing %.3f s, joining %.3f s\n", result.timings.detection, result.timings.tracing,
               result.timings.joining);
 }
@@ -191,9 +209,11 @@ void add_features_command(CLI::App& app, const GlobalOptions& global) {
   add_memory_option(cmd, args->options.max_memory_gb);
   cmd->add_option("-o,--output", args->out_path,
                   "Output PLY: x y z, nx ny nz, k1 k2 k_feature (float, 1/model units), label (uchar: 0 none, "
-                  "1 ridge, 2 valley, 3 outlier left out of the analysis); every point of the input, in its order")
+                  "1 ridge, 2 valley, 3 outlier left out of the analysis, 4 border of an open scan); every point "
+                  "of the input, in its order")
       ->required();
-  cmd->add_option("--lines", args->lines_path, "Also write the ridge/valley polylines (world coordinates) as JSON");
+  cmd->add_option("--lines", args->lines_path,
+                  "Also write the ridge/valley and boundary polylines (world coordinates) as JSON");
   cmd->add_flag("--ascii", args->ascii, "Write ascii PLY instead of binary little-endian");
 
   add_analysis_flags(cmd, args->options);

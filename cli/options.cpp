@@ -36,7 +36,7 @@ io::CropBox parse_crop(const std::string& text) {
 
 /// Surface analysis and ridge/valley options: the flags `features` shares with `draw`.
 bool analysis_option(const options::Option& opt) {
-  return opt.key.starts_with("surface.") || opt.key.starts_with("features.");
+  return opt.key.starts_with("surface.") || opt.key.starts_with("features.") || opt.key.starts_with("boundary.");
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// Who is drawn where two lines run together: the outline, then interior contours, borders, ridges and valleys.
+/// Who is drawn where two lines run together: borders, the outline, interior contours, ridges and valleys.
 stylize::FusionRank fusion_rank(const view::ViewResult& view, std::size_t line) {
   if (line < view.outline_count) return stylize::FusionRank::Outline;
   if (line < view.contour_count) return stylize::FusionRank::Interior;

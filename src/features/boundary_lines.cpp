@@ -26,6 +26,7 @@ namespace {
 
 constexpr float kDegToRad = 3.14159265358979f / 180.f;
 constexpr std::uint8_t kBorder = 1, kHole = 2;
+constexpr std::uint8_t kDrawnRim = 1, kUndrawnRim = 2;  ///< Boundary::border's values
 constexpr std::uint32_t kMinRimPoints = 8;
 
 /// Right-handed orthonormal tangent frame (u, v) of a unit normal.
@@ -248,6 +249,11 @@ Boundary find_boundaries(const std::vector<Vec3f>& positions, const std::vector<
   const std::vector<std::uint32_t> drawn =
       drawn_sets(positions, neighbourhoods, result.border, options.min_size_factor * spacing, result.small_holes);
   result.border_points = drawn.size();
+  // The outline may run along a drawn border (the boundary line is drawn over it, and where the tracer left a
+  // stretch out, the outline still closes); along a rim that is not drawn it may not.
+  for (std::uint8_t& rim : result.border)
+    if (rim) rim = kUndrawnRim;
+  for (const std::uint32_t i : drawn) result.border[i] = kDrawnRim;
   if (drawn.empty()) return result;
   std::vector<PointLabel> labels(n, PointLabel::None);
   for (const std::uint32_t i : drawn) labels[i] = PointLabel::Ridge;

@@ -25,16 +25,18 @@ using pcsketch::detail::gap_exceeds;
 using pcsketch::detail::largest_gap;
 using pcsketch::detail::octant_bit;
 
-/// The border points and their nearest `m` neighbours (empty without a border): the band of outline candidates a
-/// border seen edge-on or through a hole makes is about r/2 wide, a border one or two points.
+/// The points of the rims that are not drawn (border value 2) and their nearest `m` neighbours (empty without a
+/// border): the band of outline candidates a hole seen through makes is about r/2 wide, its rim one or two points.
 std::vector<std::uint8_t> border_band(const std::vector<std::uint8_t>& border,
                                       const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t m) {
   if (border.empty()) return {};
-  std::vector<std::uint8_t> band = border;
+  std::vector<std::uint8_t> band(border.size(), 0);
   m = std::min(m, neighbourhoods.k);
   for (std::size_t i = 0; i < border.size(); ++i)
-    if (border[i])
+    if (border[i] == 2) {
+      band[i] = 1;
       for (const std::uint32_t j : neighbourhoods.of(i).first(m)) band[j] = 1;
+    }
   return band;
 }
 

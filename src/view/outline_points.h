@@ -22,8 +22,8 @@ struct OutlinePoints {
 /// @param spacing_px #P: each point's spacing unit in pixels; 0 leaves the point out (behind a perspective eye)
 /// @param neighbourhoods the cloud's 3D k-NN lists, or empty: with them most interior points are settled without a
 ///   2D query (when gap_threshold_deg ≥ 90°); `border` needs them
-/// @param border empty or #P: border points of an open scan; neither they nor their nearest interior_neighbours are
-///   boundary points (see find_contour_points)
+/// @param border empty or #P: the rims of an open scan; points of a rim that is not drawn (2) and their nearest
+///   interior_neighbours are no boundary points (see find_contour_points)
 /// @param o reads radius_factor, k, gap_threshold_deg, quadrant_test, confirm_factor, confirm_half_angle_deg,
 ///   interior_neighbours and progress ("contour points")
 OutlinePoints find_outline_points(const std::vector<Vec3f>& projected, const std::vector<float>& spacing_px,

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 
@@ -55,6 +56,40 @@ TEST_F(CliIo, SampleWritesADeterministicCloud) {
   // A cloud without faces, and a bad count.
   EXPECT_EQ(run("sample " + std::string(PCSKETCH_FIXTURES) + "/ok/points.xyz -n 10 -o " + a).status, 2);
   EXPECT_EQ(run("sample " + mesh + " -n 0 -o " + a).status, 1);
+}
+
+TEST_F(CliIo, FeaturesLabelsTheBorderOfAnOpenSheet) {
+  // 6,000 random points on the unit square (h about 0.006): an open scan whose border is the square's edge.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::vector<Vec2f> points(6000);
+  {
+    std::ofstream out(path("sheet.xyz"));
+    for (Vec2f& p : points) {
+      p = Vec2f(u(rng), u(rng));
+      out << p.x() << " " << p.y() << " 0\n";
+    }
+  }
+  const CommandRun r = run("-q features " + path("sheet.xyz") + " --ascii -o " + path("f.ply"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream ply(slurp(path("f.ply")));
+  std::string line;
+  while (std::getline(ply, line) && line != "end_header") {
+  }
+  std::size_t border = 0, row = 0;
+  for (; std::getline(ply, line) && row < points.size(); ++row) {
+    const int label = std::stoi(line.substr(line.find_last_of(' ') + 1));
+    if (label != 4) continue;
+    ++border;
+    const float to_edge = std::min({points[row].x(), points[row].y(), 1 - points[row].x(), 1 - points[row].y()});
+    EXPECT_LT(to_edge, 0.05f) << "a border label inside the sheet, row " << row;
+  }
+  EXPECT_EQ(row, points.size());
+  // The edge is 4 long: a row of points about 2h apart along it holds some 300.
+  EXPECT_GE(border, 150u);
+  const CommandRun off = run("-q features " + path("sheet.xyz") + " --ascii --no-boundary-detection -o " + path("g.ply"));
+  ASSERT_EQ(off.status, 0) << off.err;
+  EXPECT_EQ(slurp(path("g.ply")).find(" 4\n"), std::string::npos);
 }
 
 }  // namespace

@@ -127,16 +127,22 @@ float distance_to(const Stroke& s, const Vec2f& q) {
 }
 
 /// Fraction of `circle` (sampled every degree) within `tolerance` px of a visible stroke of `kind`.
-double circle_covered(const Drawing& drawing, LineKind kind, const Circle& circle, float tolerance) {
+/// The fraction of the circle's degrees within `tolerance` of a visible stroke that `counts`.
+template <class Counts>
+double circle_covered_by(const Drawing& drawing, const Circle& circle, float tolerance, Counts&& counts) {
   std::size_t hit = 0;
   for (int degree = 0; degree < 360; ++degree) {
     const float t = static_cast<float>(degree) * 3.14159265f / 180.f;
     const Vec2f q = circle.centre + circle.radius * Vec2f(std::cos(t), std::sin(t));
     hit += std::any_of(drawing.strokes.begin(), drawing.strokes.end(), [&](const Stroke& s) {
-      return s.kind == kind && s.visible && distance_to(s, q) <= tolerance;
+      return counts(s) && s.visible && distance_to(s, q) <= tolerance;
     });
   }
   return static_cast<double>(hit) / 360.0;
+}
+
+double circle_covered(const Drawing& drawing, LineKind kind, const Circle& circle, float tolerance) {
+  return circle_covered_by(drawing, circle, tolerance, [kind](const Stroke& s) { return s.kind == kind; });
 }
 
 TEST(OpenScan, BandsOfDensityAndAHole) {
@@ -166,6 +172,28 @@ TEST(OpenScan, BandsOfDensityAndAHole) {
     if (s.kind == LineKind::Boundary && s.visible)
       for (const Vec2f& p : s.image_points) ++vertices, on_rim += rim.distance(p) <= 9.f;
   EXPECT_GE(static_cast<double>(on_rim), 0.9 * static_cast<double>(vertices));
+}
+
+TEST(OpenScan, SparseHalfSphereSeenFromItsOpenSideIsClosed) {
+  // The half of a sparse unit sphere (2,000 points) that faces the camera, as a scanner on that side records it:
+  // its border is the circle of the view's outline. The border points of so sparse a scan leave gaps the boundary
+  // tracer does not cross; the outline, free to run along a drawn border, closes the drawing there, and where both
+  // run together the border is what is painted.
+  PointCloud cloud;
+  for (const Vec3f& p : test::sphere(1.f, {.n = 4000, .seed = 4}).positions)
+    if (p.z() < 0) cloud.positions.push_back(p);
+  const DrawOptions options;
+  const Prepared prepared = prepare(std::move(cloud), options);
+  const DrawResult r = draw_view(prepared, options.camera, options);
+  const Circle outline = projected_unit_sphere(prepared, options.camera);
+  const auto painted = [](const Stroke& s) {
+    return !s.fused_into && (s.kind == LineKind::Contour || s.kind == LineKind::Boundary);
+  };
+  const float h_px = prepared.surface.spacing * outline.radius;  // about 13 px
+  // Within h of the circle, a painted line all round (0.79 when no outline point could lie on a border), and it is
+  // the border's line where the two run together.
+  EXPECT_GE(circle_covered_by(r.drawing, outline, h_px, painted), 0.95);
+  EXPECT_GE(circle_covered(r.drawing, LineKind::Boundary, outline, 2 * h_px), 0.9);
 }
 
 }  // namespace

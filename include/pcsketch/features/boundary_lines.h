@@ -53,8 +53,9 @@ struct BoundaryOptions {
 };
 
 struct Boundary {
-  /// #P (empty when disabled): 1 on a border (the cone empty out to confirm_factor · r, drawn or not), 2 on the rim
-  /// of a hole narrower than the cone (empty out to 2.5r), 0 elsewhere. No stage draws an outline along these points.
+  /// #P (empty when disabled): 1 on a rim drawn as a boundary line, 2 on a rim that is not drawn (a small hole: its
+  /// set spans under min_size_factor, or holds only points of a hole narrower than the cone), 0 elsewhere. No stage
+  /// draws an outline along the rims that are not drawn.
   std::vector<std::uint8_t> border;
   std::vector<Polyline> lines;       ///< kind Boundary, view-independent, the cloud's relative coordinates
   std::size_t border_points = 0;     ///< points on a drawn border

@@ -30,9 +30,9 @@ struct FusionOptions {
 
 /// Precedence of a stroke in fusion: where two strokes run together the one of lower rank is drawn.
 enum class FusionRank : std::uint8_t {
-  Outline = 0,   ///< the outline contour wins over everything
-  Interior = 1,  ///< interior occluding contours
-  Boundary = 2,  ///< the border of an open scan
+  Boundary = 0,  ///< the border of an open scan: where the outline runs along it, the line keeps the border's kind
+  Outline = 1,   ///< the outline contour
+  Interior = 2,  ///< interior occluding contours
   Feature = 3,   ///< ridge and valley lines
   None = 255,    ///< takes no part (hatching)
 };

@@ -122,12 +122,14 @@ struct ContourPoints {
 /// samples of interior contours.
 /// @param positions #P relative positions
 /// @param normals #P oriented unit normals (only read when options.interior; may then not be empty)
-/// @param neighbourhoods the 3D k-NN lists of the cloud (only read when options.interior)
+/// @param neighbourhoods the 3D k-NN lists of the cloud (the outline's pre-filter and the border band read them when
+///   given; interior contours need them)
 /// @param spacing mean spacing h, model units (> 0)
 /// @param normal_noise angular noise of the normals, radians (Surface::normal_noise; see persistence_factor)
-/// @param border empty or #P: border points of an open scan (features::Boundary::border). Neither they nor their
-///   nearest interior_neighbours are outline points: a hole seen through, or the edge of a façade, is where the
-///   surface ends, drawn as a boundary line (or, for a small hole, not at all), not as an occluding contour.
+/// @param border empty or #P: the rims of an open scan (features::Boundary::border). Points of a rim that is not
+///   drawn (2: a small hole) and their nearest interior_neighbours are no outline points: the surface ends there, and
+///   such a hole is not drawn at all. Along a drawn border (1) the outline may run: the boundary line is drawn over
+///   it (fusion), and where its tracing left a stretch of a sparse border out, the outline still closes.
 /// @throws pcsketch::Error for a non-positive spacing, missing normals/neighbourhoods when interior is on, or a
 ///   border of the wrong size.
 ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,

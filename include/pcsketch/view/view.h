@@ -50,7 +50,7 @@ SurfaceScene build_surface_scene(const PointCloud& cloud, const differential::Su
 /// @param cloud analysed cloud (oriented normals), as left by differential::analyse_surface
 /// @param surface its neighbourhoods and spacing h
 /// @param scene build_surface_scene(cloud, surface), shared by every view
-/// @param border empty or #P: the open scan's border points (features::Boundary::border), which are never outline
+/// @param border empty or #P: the open scan's rims (features::Boundary::border; see find_contour_points)
 /// @throws pcsketch::Error when the cloud has no normals or the surface does not match it.
 ViewResult compute_view(const PointCloud& cloud, const differential::Surface& surface, const SurfaceScene& scene,
                         const std::vector<Polyline>& lines, const Camera& camera, const ViewOptions& options = {},
