@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the gallery of docs/gallery/: a 512 px drawing of the bundled sample, of five shared models and of a
+# Regenerates the gallery of docs/gallery/: a 512 px drawing of the bundled sample, of six shared models and of a
 # noisy fandisk sample next to its clean twin, each with the paper's Fig. 19 stage images (b contours, c ridge-valley lines, d fused, e thickness, f shadow).
 #
 #   scripts/gallery.sh [PCSKETCH_BINARY]    (default: build/pcsketch)
@@ -31,6 +31,7 @@ draw camel "$data/camel.off" --view 1,0.15,0.6
 draw fandisk "$data/fandisk.off" --view 1,1,1
 draw kitten "$data/kitten.xyz" --view 0,0,-1
 draw building "$data/building.ply" --up 0,0,1 --view 1,0.7,-0.6
+draw hippo "$data/hippo1.ply"  # a sparse scan from one side: its border is the outline
 
 # A scan's noise next to its clean twin: 200k samples of the fandisk, clean and with σ = 0.2% of the diagonal.
 if [[ -f $data/fandisk.off ]]; then
