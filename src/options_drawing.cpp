@@ -199,7 +199,9 @@ void add_output(Builder& b) {
   b.add(PCSKETCH_OPTION(lines.hatching),
         {.flag = "--no-hatching", .negated = true, .help = "Leave out shadow hatching and shading"});
   b.add(PCSKETCH_OPTION(lines.boundaries),
-        {.flag = "--no-boundaries", .negated = true, .help = "Leave out the border lines of open scans"});
+        {.flag = "--no-boundaries",
+         .negated = true,
+         .help = "Leave out the border lines of open scans (the outline does not run along them either)"});
   b.choice(PCSKETCH_OPTION(render.hidden_lines), {"none", "dashed"},
            {.flag = "--hidden-lines", .help = "Hidden lines: none, or dashed (thin grey, in their own SVG layer)"});
   b.add(PCSKETCH_OPTION(render.plotter),

@@ -162,8 +162,13 @@ view::ViewResult compute_view(const Prepared& prepared, const view::Camera& came
                               Timings& timings, Warnings& warnings) {
   std::vector<Polyline> lines = prepared.features.lines;
   lines.insert(lines.end(), prepared.boundary.lines.begin(), prepared.boundary.lines.end());
+  // Without border lines the outline may not run along a border either: it would draw the border as a contour.
+  std::vector<std::uint8_t> undrawn;
+  if (!options.lines.boundaries)
+    for (const std::uint8_t rim : prepared.boundary.border) undrawn.push_back(rim ? 2 : 0);
   view::ViewResult v = view::compute_view(prepared.cloud, prepared.surface, *prepared.scene, lines, camera,
-                                          with_progress(options.view, options.progress), prepared.boundary.border);
+                                          with_progress(options.view, options.progress),
+                                          options.lines.boundaries ? prepared.boundary.border : undrawn);
   timings.contour_points += v.timings.contour_points;
   timings.contour_connection += v.timings.contour_connection;
   timings.visibility += v.timings.visibility;

@@ -194,6 +194,11 @@ TEST(OpenScan, SparseHalfSphereSeenFromItsOpenSideIsClosed) {
   // the border's line where the two run together.
   EXPECT_GE(circle_covered_by(r.drawing, outline, h_px, painted), 0.95);
   EXPECT_GE(circle_covered(r.drawing, LineKind::Boundary, outline, 2 * h_px), 0.9);
+  // Without border lines (--no-boundaries) the border is not drawn as an outline either.
+  DrawOptions no_borders = options;
+  no_borders.lines.boundaries = false;
+  const DrawResult without = draw_view(prepared, options.camera, no_borders);
+  EXPECT_LE(circle_covered_by(without.drawing, outline, h_px, painted), 0.2);
 }
 
 }  // namespace
