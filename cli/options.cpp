@@ -113,17 +113,20 @@ double available_memory_bytes() {
 
 void check_full_resolution(const io::ReadOptions& read, const std::string& input, double bytes_per_point) {
   if (read.decimate.resolution || read.decimate.active()) return;
-  const std::optional<std::uint64_t> count = io::points_in_header(input);
+  std::optional<std::uint64_t> count = io::points_in_header(input);
+  const bool estimated = !count;
+  if (estimated) count = io::estimated_text_rows(input);
   if (!count) return;
   const double need = static_cast<double>(*count) * (kReadBytesPerPoint + bytes_per_point);
   const double available = available_memory_bytes();
   if (need <= available) return;
-  char text[240];
+  char text[320];
   std::snprintf(text, sizeof text,
-                "%s holds %llu points, estimated to need %.3g GB (%.0f bytes a point: docs/geometry.md), over the "
+                "%s holds %s%llu points%s, estimated to need %.3g GB (%.0f bytes a point: docs/geometry.md), over the "
                 "%.3g GB available (MemAvailable); leave out --full-resolution to thin it to the image's resolution",
-                one_line(input).c_str(), static_cast<unsigned long long>(*count), need / 1e9,
-                kReadBytesPerPoint + bytes_per_point, available / 1e9);
+                one_line(input).c_str(), estimated ? "about " : "", static_cast<unsigned long long>(*count),
+                estimated ? " (from its line lengths)" : "", need / 1e9, kReadBytesPerPoint + bytes_per_point,
+                available / 1e9);
   throw OptionError("--full-resolution", text);
 }
 

@@ -119,6 +119,9 @@ std::optional<std::uint64_t> pcd_header_count(const Source& source);  ///< any P
 std::optional<StreamHeader> xyz_stream_header(const Source& source);
 /// Whether the whole read would read `source` as the XYZ family (throws its error for an empty or unknown file).
 bool reads_as_xyz(const Source& source);
+/// The rows of an XYZ-family text from the lines holding 256 evenly spaced offsets, each counting 1/length rows
+/// per byte (within a few percent of the data rows); nullopt for a text of one line.
+std::optional<std::uint64_t> sampled_rows(const Source& source);
 void las_read_kept(const Source& source, std::span<const std::uint64_t> kept, std::uint16_t colour_max, bool colors,
                    PointCloud& cloud);
 

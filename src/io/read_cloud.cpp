@@ -289,6 +289,13 @@ std::optional<std::uint64_t> points_in_header(const std::string& path) {
   return detail::ply_header_count(source);
 }
 
+std::optional<std::uint64_t> estimated_text_rows(const std::string& path) {
+  const detail::MappedFile file(path);
+  const Source source{file.bytes(), path};
+  if (!detail::reads_as_xyz(source)) return std::nullopt;
+  return detail::sampled_rows(source);
+}
+
 ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::string& name_hint,
                                         const ReadOptions& options) {
   return read_points(Source{bytes, name_hint, options.columns, &options.progress}, options);

@@ -3,6 +3,8 @@
 // estimate for the budget decision, and the first pass gathers the statistics the layout guess needs
 // (ColumnStats), so that the second pass reads the columns exactly as the whole read would.
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <memory>
 
@@ -12,8 +14,8 @@
 namespace pcsketch::io::detail {
 namespace {
 
-/// Data lines whose length the count estimate looks at.
-constexpr std::size_t kEstimateLines = 1024;
+/// Data lines whose length the count estimate looks at, and lines sampled through the file by sampled_rows.
+constexpr std::size_t kEstimateLines = 1024, kSampledLines = 256;
 
 /// The rows of a file before they are read: an estimate (for progress) and a bound no file can pass.
 struct RowCount {
@@ -124,6 +126,21 @@ void complete(XyzState& state, const std::string& path, StreamHeader& header, st
 }
 
 }  // namespace
+
+std::optional<std::uint64_t> sampled_rows(const Source& source) {
+  const std::string_view text = skip_bom(source.bytes);
+  if (text.find('\n') == std::string_view::npos) return std::nullopt;  // one line: the read counts it
+  // The line holding each of evenly spaced offsets: a line is hit as often as it is long, so each counts 1/length
+  // rows (a file of long lines first and short ones after is not taken for one of long lines). Comments count none.
+  double rows = 0;
+  for (std::size_t s = 0; s < kSampledLines; ++s) {
+    const std::size_t at = text.size() * (2 * s + 1) / (2 * kSampledLines);
+    const std::size_t start = at == 0 ? 0 : text.rfind('\n', at - 1) + 1;  // npos + 1 = 0: the first line
+    const std::size_t end = std::min(text.find('\n', at), text.size());
+    if (!is_comment_or_blank(text.substr(start, end - start))) rows += 1.0 / static_cast<double>(end - start + 1);
+  }
+  return static_cast<std::uint64_t>(std::llround(rows * static_cast<double>(text.size()) / kSampledLines));
+}
 
 std::optional<StreamHeader> xyz_stream_header(const Source& source) {
   if (!reads_as_xyz(source)) return std::nullopt;

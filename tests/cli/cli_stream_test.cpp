@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -64,6 +66,22 @@ TEST_F(CliStream, FullResolutionRefusedOverTheAvailableMemory) {
   EXPECT_FALSE(std::filesystem::exists(path("a.svg")));
   // Without the flag the cloud is drawn (the budget leaves it whole; the analysis needs less than the machine has).
   EXPECT_EQ(run("-q draw " + kBunny + " -o " + path("a.svg"), "1000000").status, 0);
+}
+
+TEST_F(CliStream, FullResolutionRefusedOverTheAvailableMemoryForAnXyzFileToo) {
+  // 5,000 rows and no count in the file: the estimate from its line lengths decides before any row is read.
+  {
+    std::ofstream out(path("grid.xyz"));
+    for (int i = 0; i < 5000; ++i) out << (i % 100) * 0.01 << " " << (i / 100) * 0.01 << " 0.5\n";
+  }
+  const CommandRun r = run("-q draw " + path("grid.xyz") + " --full-resolution -o " + path("a.svg"), "100000");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  const std::size_t at = r.err.find("holds about ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  EXPECT_NEAR(std::stod(r.err.substr(at + 12)), 5000, 250) << r.err;
+  EXPECT_NE(r.err.find("points (from its line lengths), estimated to need"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(path("a.svg")));
 }
 
 TEST_F(CliStream, MalformedFilesFailAsBeforeWhenThinned) {

@@ -161,5 +161,27 @@ TEST(XyzStream, MappedFileGivesTheSamePoints) {
   expect_same_cloud(read_point_cloud(path, options).cloud, read_point_cloud_from_memory(bytes, "s.xyz", options).cloud);
 }
 
+TEST(XyzStream, RowsEstimatedFromLinesSampledThroughTheFile) {
+  // The file of LongFirstLinesDoNotHideRowsOverTheBudget: long first lines, short ones after, a header row and
+  // comments; --full-resolution's early memory check takes this estimate where no header declares a count.
+  std::string bytes = "x y z\n# scanned 2026\n";
+  for (const test::SpherePoint& s : test::noisy_sphere(1024)) {
+    const Vec3d p = s.radius * s.direction;
+    bytes += text_of(p.x()) + " " + text_of(p.y()) + " " + text_of(p.z()) + "\n";
+  }
+  for (std::size_t i = 0; i < 20000; ++i) {
+    bytes += text_of(double(i % 100) / 100) + " " + text_of(double(i / 100) / 100) + " 0.5\n";
+    if (i % 1000 == 0) bytes += "# a comment line\n";
+  }
+  const test::TempDir dir;
+  const std::optional<std::uint64_t> rows = estimated_text_rows(dir.write("s.xyz", bytes));
+  ASSERT_TRUE(rows.has_value());
+  EXPECT_NEAR(static_cast<double>(*rows), 21024.0, 0.05 * 21024.0);
+  EXPECT_FALSE(estimated_text_rows(dir.write("s.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                                                     "property float y\nproperty float z\nend_header\n0 0 0\n"))
+                   .has_value());
+  EXPECT_FALSE(estimated_text_rows(dir.write("one.xyz", "1 2 3")).has_value());  // one line: read whole
+}
+
 }  // namespace
 }  // namespace pcsketch::io

@@ -91,6 +91,11 @@ ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::strin
 /// for the other formats, whose count is known only once read. @throws pcsketch::Error for a malformed header.
 std::optional<std::uint64_t> points_in_header(const std::string& path);
 
+/// The rows of a text cloud (the XYZ family), which declares no count, estimated from the lengths of the lines at 256
+/// evenly spaced offsets (within a few percent of its data rows); nullopt for other formats and one-line texts.
+/// @throws pcsketch::Error for an empty or unreadable file.
+std::optional<std::uint64_t> estimated_text_rows(const std::string& path);
+
 /// Largest and smallest bounding-box side a cloud may have to be drawn. Positions are float and squared distances
 /// must stay far inside float range: a cloud in 1e30 or 1e-30 units (or one stray point at 1e30) is refused with a
 /// message saying so rather than analysed into a zero spacing or a null camera.
