@@ -104,7 +104,8 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
     const view::Camera cam = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, camera);
     const test::MeshSharpEdges sharp = test::mesh_sharp_edges(mesh, cam, kSharpDegrees);
     const Drawing& d = result.drawing;
-    per_view.push_back({{"contour", score(d, LineKind::Contour, test::mesh_contours(mesh, cam).visible, drawn_only, c.one_side)},
+    const std::vector<Vec2f> contours = test::mesh_contours(mesh, cam).visible;
+    per_view.push_back({{"contour", score(d, LineKind::Contour, contours, drawn_only, c.one_side)},
                         {"ridge", score(d, LineKind::Ridge, sharp.convex.visible, drawn_only)},
                         {"valley", score(d, LineKind::Valley, sharp.concave.visible, drawn_only)}});
   }

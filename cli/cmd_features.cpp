@@ -161,7 +161,7 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   std::vector<float> k1 = surface.curvature.k1, k2 = surface.curvature.k2, ki = result.detection.feature_curvature;
   std::vector<std::uint8_t> labels(cloud.size());
   for (std::size_t i = 0; i < labels.size(); ++i)
-    labels[i] = !boundary.border.empty() && boundary.border[i] == 1
+    labels[i] = !boundary.border.empty() && boundary.border[i] == features::Boundary::kDrawnRim
                     ? kBorderLabel
                     : static_cast<std::uint8_t>(result.detection.labels[i]);
   for (std::vector<float>* values : {&k1, &k2, &ki}) values->resize(out.size(), 0.f);

@@ -26,7 +26,6 @@ namespace {
 
 constexpr float kDegToRad = 3.14159265358979f / 180.f;
 constexpr std::uint8_t kBorder = 1, kHole = 2;
-constexpr std::uint8_t kDrawnRim = 1, kUndrawnRim = 2;  ///< Boundary::border's values
 constexpr std::uint32_t kMinRimPoints = 8;
 
 /// Right-handed orthonormal tangent frame (u, v) of a unit normal.
@@ -185,8 +184,9 @@ struct RimSet {
 
 /// The points of `rim` (border or hole rims) in connected sets that hold a border point and span at least
 /// `min_size` (largest side of their bounding box), ascending; `small` counts the other sets. Sets of fewer than
-/// kMinRimPoints are cleared from `rim`: the rim of a hole a cone wide holds dozens. Past the scan for them, only the
-/// rim points are visited (a closed cloud has few or none), numbered by their places among them.
+/// kMinRimPoints are cleared from `rim`, the others marked Boundary::kDrawnRim or kUndrawnRim: the rim of a hole a
+/// cone wide holds dozens. Past the scan for them, only the rim points are visited (a closed cloud has few or none),
+/// numbered by their places among them.
 std::vector<std::uint32_t> drawn_sets(const std::vector<Vec3f>& positions, const neighbourhood::Neighbourhoods& nbh,
                                       std::vector<std::uint8_t>& rim, float min_size, std::size_t& small) {
   std::vector<std::uint32_t> points;
@@ -216,10 +216,9 @@ std::vector<std::uint32_t> drawn_sets(const std::vector<Vec3f>& positions, const
   std::vector<std::uint32_t> drawn;
   for (std::uint32_t p = 0; p < points.size(); ++p) {
     const RimSet& set = records[set_of[p]];
-    if (set.points < kMinRimPoints)
-      rim[points[p]] = 0;  // a stray mark: a random gap of the sampling, a change of density, not the rim of anything
-    else if (kept(set))
-      drawn.push_back(points[p]);
+    // Fewer points: a stray mark (a random gap of the sampling, a change of density), not the rim of anything.
+    rim[points[p]] = set.points < kMinRimPoints ? 0 : kept(set) ? Boundary::kDrawnRim : Boundary::kUndrawnRim;
+    if (rim[points[p]] == Boundary::kDrawnRim) drawn.push_back(points[p]);
   }
   return drawn;
 }
@@ -249,11 +248,6 @@ Boundary find_boundaries(const std::vector<Vec3f>& positions, const std::vector<
   const std::vector<std::uint32_t> drawn =
       drawn_sets(positions, neighbourhoods, result.border, options.min_size_factor * spacing, result.small_holes);
   result.border_points = drawn.size();
-  // The outline may run along a drawn border (the boundary line is drawn over it, and where the tracer left a
-  // stretch out, the outline still closes); along a rim that is not drawn it may not.
-  for (std::uint8_t& rim : result.border)
-    if (rim) rim = kUndrawnRim;
-  for (const std::uint32_t i : drawn) result.border[i] = kDrawnRim;
   if (drawn.empty()) return result;
   std::vector<PointLabel> labels(n, PointLabel::None);
   for (const std::uint32_t i : drawn) labels[i] = PointLabel::Ridge;

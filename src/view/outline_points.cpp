@@ -10,6 +10,7 @@
 
 #include "core/angular_gap.h"
 #include "core/parallel_chunks.h"
+#include "pcsketch/features/boundary_lines.h"
 #include "image_cells.h"
 #include "point_grid.h"
 
@@ -25,7 +26,7 @@ using pcsketch::detail::gap_exceeds;
 using pcsketch::detail::largest_gap;
 using pcsketch::detail::octant_bit;
 
-/// The points of the rims that are not drawn (border value 2) and their nearest `m` neighbours (empty without a
+/// The points of the rims that are not drawn and their nearest `m` neighbours (empty without a
 /// border): the band of outline candidates a hole seen through makes is about r/2 wide, its rim one or two points.
 std::vector<std::uint8_t> border_band(const std::vector<std::uint8_t>& border,
                                       const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t m) {
@@ -33,7 +34,7 @@ std::vector<std::uint8_t> border_band(const std::vector<std::uint8_t>& border,
   std::vector<std::uint8_t> band(border.size(), 0);
   m = std::min(m, neighbourhoods.k);
   for (std::size_t i = 0; i < border.size(); ++i)
-    if (border[i] == 2) {
+    if (border[i] == features::Boundary::kUndrawnRim) {
       band[i] = 1;
       for (const std::uint32_t j : neighbourhoods.of(i).first(m)) band[j] = 1;
     }

@@ -6,6 +6,7 @@
 
 #include "core/progress.h"
 #include "pcsketch/core/error.h"
+#include "pcsketch/features/boundary_lines.h"
 
 namespace pcsketch::view {
 
@@ -51,7 +52,7 @@ ViewResult compute_view(const PointCloud& cloud, const differential::Surface& su
   result.contour_count = contours.outline.size() + contours.interior.size();
   result.outline_count = contours.outline.size();
   // An open sheet seen face-on has no outline but its border (a boundary line).
-  const bool open_scan = std::find(border.begin(), border.end(), std::uint8_t{1}) != border.end();
+  const bool open_scan = std::find(border.begin(), border.end(), features::Boundary::kDrawnRim) != border.end();
   if (contours.outline.empty() && !cloud.empty() && !open_scan)
     result.warnings.push_back("view: no outline found (is the whole cloud behind the camera?)");
 

@@ -53,9 +53,11 @@ struct BoundaryOptions {
 };
 
 struct Boundary {
-  /// #P (empty when disabled): 1 on a rim drawn as a boundary line, 2 on a rim that is not drawn (a small hole: its
-  /// set spans under min_size_factor, or holds only points of a hole narrower than the cone), 0 elsewhere. No stage
-  /// draws an outline along the rims that are not drawn.
+  /// The values of `border` on a rim drawn as a boundary line, and on one that is not drawn.
+  static constexpr std::uint8_t kDrawnRim = 1, kUndrawnRim = 2;
+  /// #P (empty when disabled): kDrawnRim on a rim drawn as a boundary line, kUndrawnRim on a rim that is not drawn (a
+  /// small hole: its set spans under min_size_factor, or holds only points of a hole narrower than the cone), 0
+  /// elsewhere. No stage draws an outline along the rims that are not drawn.
   std::vector<std::uint8_t> border;
   std::vector<Polyline> lines;       ///< kind Boundary, view-independent, the cloud's relative coordinates
   std::size_t border_points = 0;     ///< points on a drawn border
