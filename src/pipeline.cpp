@@ -165,7 +165,8 @@ view::ViewResult compute_view(const Prepared& prepared, const view::Camera& came
   // Without border lines the outline may not run along a border either: it would draw the border as a contour.
   std::vector<std::uint8_t> undrawn;
   if (!options.lines.boundaries)
-    for (const std::uint8_t rim : prepared.boundary.border) undrawn.push_back(rim ? features::Boundary::kUndrawnRim : 0);
+    for (const std::uint8_t rim : prepared.boundary.border)
+      undrawn.push_back(rim ? features::Boundary::kUndrawnRim : std::uint8_t{0});
   view::ViewResult v = view::compute_view(prepared.cloud, prepared.surface, *prepared.scene, lines, camera,
                                           with_progress(options.view, options.progress),
                                           options.lines.boundaries ? prepared.boundary.border : undrawn);
