@@ -45,7 +45,9 @@ const Condition kConditions[] = {{"clean", 0, 0, 1},
                                  {"1% outliers", 0, 0.01, 1},
                                  {"2% clumps", 0, 0.02, 20},
                                  {"0.1% + 1% outl.", 0.001, 0.01, 1},
-                                 {"one side", 0, 0, 1, true}};
+                                 {"one side", 0, 0, 1, true},
+                                 {"one side 0.1%", 0.001, 0, 1, true},
+                                 {"one side + 1% outl.", 0, 0.01, 1, true}};
 
 /// Directions of sight: the paper's +z and four oblique ones, none parallel to the default up (+y).
 const Vec3d kViews[] = {{0, 0, 1}, {1, 0.15, 0.6}, {1, 1, 1}, {-1, 0.3, -0.5}, {0.3, -0.6, 1}};
@@ -82,7 +84,8 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
   if (c.one_side) {
     std::vector<std::uint32_t> facing;
     for (std::uint32_t i = 0; i < cloud.size(); ++i)
-      if (cloud.normals[i].cast<double>().dot(kViews[0]) < 0) facing.push_back(i);
+      if (cloud.source_index[i] == io::kOutlier || cloud.normals[i].cast<double>().dot(kViews[0]) < 0)
+        facing.push_back(i);
     keep_points(cloud, facing);
     cloud.normals.clear();  // a raw scan's
     views = 1;
