@@ -1,18 +1,23 @@
 // What scanners deliver: the shared meshes sampled at N points (default 200,000), clean, with Gaussian noise of
 // 0.1% and 0.2% of the diagonal, and with 1% stray points (uniform, and in clumps of 20), each drawn from several
 // views and scored against the mesh's exact visible occluding contours and sharp edges (3 px at 1024 px,
-// tests/support/mesh_ground_truth.h). Speed and quality read together: seconds of prepare() and of a view, peak RSS.
+// tests/support/mesh_ground_truth.h); boundary strokes are scored with the contours, as the truth holds the mesh's
+// border edges. "vertices" draws the mesh's own vertices (a sparse, often uneven cloud). A model is a shared mesh's
+// name or a path to any mesh (held-out models: scripts/heldout_meshes.sh). Speed and quality read together: seconds
+// of prepare() and of a view, peak RSS.
 //
-//   bench_scans [-n N] [--models a,b] [--conditions clean,0.1%,...] [--views K] [--boundary on|off]
+//   bench_scans [-n N] [--models a,b|path.off,...] [--conditions clean,0.1%,...] [--views K] [--boundary on|off]
 //               [--fusion on|off] [--smooth on|off] [--min-stroke-length PX] [--score all|drawn]
-//               [--config OPTIONS.json]
+//               [--config OPTIONS.json] [--overlay DIR]
 //
 // --config reads options as `pcsketch draw --print-config` writes them (any subset), in its place among the flags.
 // --score drawn leaves out the strokes fused into another line (not painted); by default every visible stroke is
-// scored as the kind it was traced as.
+// scored as the kind it was traced as. --overlay writes an SVG per model, condition and view into DIR: the contour
+// truth green where drawn and red where missed, the drawn contour blue where true and orange where not.
 //
 // Each (model, condition) runs in its own process. "total" = prepare + the first view (no reading, no writing).
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -36,8 +41,10 @@ struct Condition {
   double outliers = 0;   ///< fraction of n
   std::size_t clump = 1;
   /// Only the samples whose face looks towards the first view's camera: a scan from one side, whose border is the
-  /// outline and the rims of that view. Scored from that view only, contours and borders together.
+  /// outline and the rims of that view. Scored from that view only.
   bool one_side = false;
+  /// The mesh's own vertices instead of samples (n unused): a sparse cloud whose points lie on the true contours.
+  bool vertices = false;
 };
 const Condition kConditions[] = {{"clean", 0, 0, 1},
                                  {"0.1%", 0.001, 0, 1},
@@ -47,7 +54,8 @@ const Condition kConditions[] = {{"clean", 0, 0, 1},
                                  {"0.1% + 1% outl.", 0.001, 0.01, 1},
                                  {"one side", 0, 0, 1, true},
                                  {"one side 0.1%", 0.001, 0, 1, true},
-                                 {"one side + 1% outl.", 0, 0.01, 1, true}};
+                                 {"one side + 1% outl.", 0, 0.01, 1, true},
+                                 {"vertices", 0, 0, 1, false, true}};
 
 /// Directions of sight: the paper's +z and four oblique ones, none parallel to the default up (+y).
 const Vec3d kViews[] = {{0, 0, 1}, {1, 0.15, 0.6}, {1, 1, 1}, {-1, 0.3, -0.5}, {0.3, -0.6, 1}};
@@ -56,26 +64,72 @@ constexpr float kSharpDegrees = 40.f;
 constexpr float kTolerancePx = 3.f;
 
 
-/// Scores the visible strokes of `kind`; with `drawn_only`, the copies fused into another line (not painted) are left
-/// out, so a ridge drawn as the contour along it counts for the contour only; `with_border` scores the boundary
-/// strokes with them.
-nlohmann::json score(Drawing drawing, LineKind kind, const std::vector<Vec2f>& truth, bool drawn_only,
-                     bool with_border = false) {
-  if (truth.empty()) return nullptr;
+/// Samples of the visible strokes of `kind`; with `drawn_only`, the copies fused into another line (not painted) are
+/// left out, so a ridge drawn as the contour along it counts for the contour only; `with_border` adds the boundary
+/// strokes.
+std::vector<Vec2f> drawn_samples(Drawing drawing, LineKind kind, bool drawn_only, bool with_border) {
   if (drawn_only) std::erase_if(drawing.strokes, [](const Stroke& s) { return s.fused_into.has_value(); });
   std::vector<Vec2f> drawn = test::sample_visible_strokes(drawing, kind);
-  if (with_border) {  // an open scan's border is where its outline and rims are
+  if (with_border) {  // a scan's border is where its outline and rims are
     const std::vector<Vec2f> border = test::sample_visible_strokes(drawing, LineKind::Boundary);
     drawn.insert(drawn.end(), border.begin(), border.end());
   }
-  const test::LineMatch m = test::match_lines(drawn, truth, kTolerancePx);
+  return drawn;
+}
+
+nlohmann::json score(const Drawing& drawing, LineKind kind, const std::vector<Vec2f>& truth, bool drawn_only,
+                     bool with_border = false) {
+  if (truth.empty()) return nullptr;
+  const test::LineMatch m =
+      test::match_lines(drawn_samples(drawing, kind, drawn_only, with_border), truth, kTolerancePx);
   return {m.precision, m.recall};
 }
 
+/// Whether each of `a` lies within the tolerance of some point of `b` (a grid of tolerance-sized cells).
+std::vector<bool> matched(const std::vector<Vec2f>& a, const std::vector<Vec2f>& b) {
+  std::map<std::pair<int, int>, std::vector<Vec2f>> cells;
+  const auto cell = [](float x) { return static_cast<int>(std::floor(x / kTolerancePx)); };
+  for (const Vec2f& p : b) cells[{cell(p.x()), cell(p.y())}].push_back(p);
+  std::vector<bool> out(a.size(), false);
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (int dx = -1; dx <= 1 && !out[i]; ++dx)
+      for (int dy = -1; dy <= 1 && !out[i]; ++dy)
+        if (const auto it = cells.find({cell(a[i].x()) + dx, cell(a[i].y()) + dy}); it != cells.end())
+          for (const Vec2f& q : it->second) out[i] = out[i] || (q - a[i]).norm() <= kTolerancePx;
+  return out;
+}
+
+/// An SVG of the contour score: truth samples green where drawn near them, red where missed; drawn samples blue
+/// where true, orange where not; the cloud's points grey.
+void write_overlay(const std::string& file, const view::Camera& camera, const PointCloud& cloud,
+                   const std::vector<Vec2f>& drawn, const std::vector<Vec2f>& truth) {
+  std::ofstream out(file);
+  out << "<svg xmlns='http://www.w3.org/2000/svg' width='" << camera.width << "' height='" << camera.height
+      << "'><rect width='100%' height='100%' fill='white'/>\n";
+  const auto dots = [&](const std::vector<Vec2f>& points, const std::vector<bool>& good, const char* yes,
+                        const char* no, float r) {
+    for (std::size_t i = 0; i < points.size(); ++i)
+      out << "<circle cx='" << points[i].x() << "' cy='" << points[i].y() << "' r='" << r << "' fill='"
+          << (good.empty() || good[i] ? yes : no) << "'/>\n";
+  };
+  std::vector<Vec2f> projected;
+  for (const Vec3f& p : cloud.positions) projected.push_back(camera.project(p).head<2>());
+  dots(projected, {}, "#bbb", "#bbb", 0.8f);
+  dots(truth, matched(truth, drawn), "#2a2", "#e22", 1.2f);
+  dots(drawn, matched(drawn, truth), "#22c", "#f80", 0.6f);
+  out << "</svg>\n";
+}
+
+/// Where --overlay writes its SVGs, empty: none.
+std::string overlay_dir;
+
 std::string measure(const std::string& model, const Condition& c, std::size_t n, std::size_t views,
                     const DrawOptions& options, bool drawn_only) {
-  const Mesh mesh = io::read_mesh(shared_data(model + ".off"));
-  PointCloud cloud = io::sample_mesh(mesh, {.n = n,
+  // A name is a shared mesh; a path (held-out meshes) is read as given.
+  const std::string path = model.find('/') == std::string::npos ? shared_data(model + ".off") : model;
+  const Mesh mesh = io::read_mesh(path);
+  PointCloud cloud = c.vertices ? io::read_point_cloud(path).cloud
+                                : io::sample_mesh(mesh, {.n = n,
                                             .noise_sigma_factor = c.noise,
                                             .seed = 2024,
                                             .keep_normals = c.one_side,
@@ -108,9 +162,15 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
     const test::MeshSharpEdges sharp = test::mesh_sharp_edges(mesh, cam, kSharpDegrees);
     const Drawing& d = result.drawing;
     const std::vector<Vec2f> contours = test::mesh_contours(mesh, cam).visible;
-    per_view.push_back({{"contour", score(d, LineKind::Contour, contours, drawn_only, c.one_side)},
+    // The truth holds the mesh's border edges with its contours: boundary strokes are scored with the contours (a
+    // border drawn on a closed surface counts against precision).
+    per_view.push_back({{"contour", score(d, LineKind::Contour, contours, drawn_only, true)},
                         {"ridge", score(d, LineKind::Ridge, sharp.convex.visible, drawn_only)},
                         {"valley", score(d, LineKind::Valley, sharp.concave.visible, drawn_only)}});
+    if (!overlay_dir.empty())
+      write_overlay(overlay_dir + "/" + std::filesystem::path(model).stem().string() + "_" + c.name + "_" +
+                        std::to_string(v) + ".svg",
+                    cam, prepared.cloud, drawn_samples(d, LineKind::Contour, drawn_only, true), contours);
   }
   // Outliers left in the analysed cloud, and surface points removed with them.
   std::size_t kept_outliers = 0;
@@ -159,6 +219,7 @@ int run(int argc, char** argv) {
     else if (flag == "--boundary") options.boundary.enabled = value != "off";
     else if (flag == "--fusion") options.fusion.enabled = value != "off";
     else if (flag == "--score") drawn_only = value == "drawn";
+    else if (flag == "--overlay") overlay_dir = value;
     else if (flag == "--smooth") options.finish.smooth = value != "off";
     else if (flag == "--min-stroke-length") options.finish.min_length_px = std::stof(value);
     else if (flag == "--config") {
@@ -183,7 +244,7 @@ int run(int argc, char** argv) {
           nlohmann::json::parse(run_isolated([&] { return measure(model, c, n, views, options, drawn_only); }));
       const double total = r["prepare"].get<double>() + r["view"].get<double>();
       const auto& v = r["views"];
-      table.add_row({model, c.name, grouped(r["kept"].get<std::size_t>()),
+      table.add_row({std::filesystem::path(model).stem().string(), c.name, grouped(r["kept"].get<std::size_t>()),
                      grouped(r["kept_outliers"].get<std::size_t>()) + "/" + grouped(r["outliers"].get<std::size_t>()),
                      fixed(r["prepare"].get<double>(), 3), fixed(r["view"].get<double>(), 3), fixed(total, 3),
                      range_cell(v, "contour", 0), range_cell(v, "contour", 1),

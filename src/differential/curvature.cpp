@@ -8,6 +8,7 @@
 #include <span>
 
 #include "common.h"
+#include "core/ordered_key.h"
 #include "graph_curvature.h"
 #include "core/parallel_chunks.h"
 #include "group_fit.h"
@@ -113,6 +114,28 @@ PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f&
   return fit_quadric(local.data(), count + 1, spread, n, u, v, true);
 }
 
+/// Median of χ²_ν/ν, ≈ (1 − 2/(9ν))³ (Wilson–Hilferty): the median squared residual of a fit with ν degrees of
+/// freedom on pure noise, relative to σ².
+double chi_square_median(double dof) { return std::pow(1 - 2 / (9 * dof), 3); }
+
+/// Every stride-th point makes a sample, so that no more than `max_samples` are taken.
+std::size_t sample_stride(std::size_t n, std::size_t max_samples) {
+  return std::max<std::size_t>(1, n / std::max<std::size_t>(max_samples, 1));
+}
+
+/// The points the noise estimates fit: every `stride`-th; none (count 0) without `min_k` neighbours or normals.
+struct Sampling {
+  std::size_t stride = 1, count = 0;
+};
+Sampling sampling(const char* stage, const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
+                  const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t max_samples, std::size_t min_k) {
+  const std::size_t n = points.size();
+  detail::check_neighbourhoods(stage, n, neighbourhoods);
+  if (n == 0 || neighbourhoods.k == 0 || neighbourhoods.k < min_k || normals.size() != n) return {};
+  const std::size_t stride = sample_stride(n, max_samples);
+  return {stride, (n + stride - 1) / stride};
+}
+
 /// Median of `values` (reordered).
 double median(std::vector<double>& values) {
   if (values.empty()) return 0;
@@ -149,8 +172,7 @@ double noise_estimate(const std::vector<double>& residual, std::vector<double>& 
   const double sampled_outer_median = median(sampled_outer);
   if (!(sampled_outer_median > 0)) return outer_median;
   const double inner_median = median(inner_residual);
-  // On pure noise the ratio is that of the medians of χ²_ν/ν, ≈ (1 − 2/(9ν))³ (Wilson–Hilferty), ν = points − 6.
-  const auto chi_square_median = [](double dof) { return std::pow(1 - 2 / (9 * dof), 3); };
+  // On pure noise the ratio is that of the medians of χ²_ν/ν, ν = points − 6.
   const double pure_noise_ratio = chi_square_median(static_cast<double>(kInnerFit) - 5) /
                                   chi_square_median(static_cast<double>(k) - 5);
   const double q = (inner_median * inner_median) / (sampled_outer_median * sampled_outer_median) / pure_noise_ratio;
@@ -175,7 +197,7 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   // First pass only: residual of the fit over the nearest kInnerFit neighbours at every stride-th point (points are
   // in space-filling-curve order, so the sample spreads over the surface); its median needs no more than ~16k.
   std::vector<double> inner_residual;
-  const std::size_t stride = std::max<std::size_t>(1, n / 16384);
+  const std::size_t stride = sample_stride(n, 16384);
 
   std::optional<neighbourhood::KdTree> own_tree;
   // A second pass reports under its own name: one stage's fraction never starts again at 0.
@@ -252,12 +274,9 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
 
 float estimate_noise(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                      const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t max_samples) {
-  const std::size_t n = points.size();
-  detail::check_neighbourhoods("noise estimate", n, neighbourhoods);
+  const auto [stride, samples] = sampling("noise estimate", points, normals, neighbourhoods, max_samples, 1);
+  if (samples == 0) return 0.f;
   const std::size_t k = neighbourhoods.k;
-  if (n == 0 || k == 0 || normals.size() != n) return 0.f;
-  const std::size_t stride = std::max<std::size_t>(1, n / std::max<std::size_t>(max_samples, 1));
-  const std::size_t samples = (n + stride - 1) / stride;
   std::vector<double> residual(samples), inner(k >= kInnerFit + 4 ? samples : 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples, 256), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
@@ -267,6 +286,63 @@ float estimate_noise(const std::vector<Vec3f>& points, const std::vector<Vec3f>&
     }
   });
   return static_cast<float>(noise_estimate(residual, inner, 1, k));
+}
+
+namespace {
+
+/// Neighbours of the wider fit that tells noise from misfit (noise_share): the nearest of the neighbours'
+/// neighbours, so no tree is needed.
+constexpr std::size_t kWideFit = 40;
+
+/// The kWideFit nearest of i's neighbours and their neighbours (i excluded), into `wide`; false if fewer.
+bool wide_neighbours(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
+                     std::vector<std::uint32_t>& ring, std::vector<std::uint64_t>& keys,
+                     std::vector<std::uint32_t>& wide) {
+  ring.clear();
+  for (const std::uint32_t j : nbh.of(i)) {
+    ring.push_back(j);
+    for (const std::uint32_t q : nbh.of(j)) ring.push_back(q);
+  }
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  keys.clear();
+  for (const std::uint32_t j : ring)
+    if (j != i) keys.push_back(pcsketch::detail::ordered_key((points[j] - points[i]).squaredNorm(), j));
+  if (keys.size() < kWideFit) return false;
+  std::nth_element(keys.begin(), keys.begin() + kWideFit - 1, keys.end());
+  wide.resize(kWideFit);
+  for (std::size_t m = 0; m < kWideFit; ++m) wide[m] = pcsketch::detail::key_index(keys[m]);
+  return true;
+}
+
+}  // namespace
+
+float noise_share(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
+                  const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t max_samples) {
+  const auto [stride, samples] = sampling("noise share", points, normals, neighbourhoods, max_samples, kInnerFit);
+  if (samples == 0) return 1.f;
+  const std::size_t k = neighbourhoods.k;
+  std::vector<double> outer(samples, -1), wider(samples, -1);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::uint64_t> keys;
+    std::vector<std::uint32_t> ring, wide;
+    for (std::size_t j = r.begin(); j != r.end(); ++j) {
+      const std::size_t i = j * stride;
+      if (!wide_neighbours(points, neighbourhoods, i, ring, keys, wide)) continue;
+      outer[j] = fit_point(points, i, normals[i], neighbourhoods.indices.data() + i * k, k, nullptr).residual;
+      wider[j] = fit_point(points, i, normals[i], wide.data(), kWideFit, nullptr).residual;
+    }
+  });
+  std::erase(outer, -1.0);
+  std::erase(wider, -1.0);
+  const double outer_median = median(outer), wider_median = median(wider);
+  if (!(outer_median > 0)) return 1.f;
+  // On pure noise the squared medians' ratio is that of the medians of χ²_ν/ν (ν = points − 6); misfit's square
+  // grows as (kWideFit/k)³.
+  const double q = (wider_median * wider_median) / (outer_median * outer_median) /
+                   (chi_square_median(static_cast<double>(kWideFit) - 5) / chi_square_median(static_cast<double>(k) - 5));
+  const double c = std::pow(static_cast<double>(kWideFit) / static_cast<double>(k), 3);
+  return static_cast<float>(std::clamp((c - q) / (c - 1), 0.0, 1.0));
 }
 
 Curvature estimate_curvature(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,

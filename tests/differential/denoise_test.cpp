@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pcsketch/differential/curvature.h"
 #include "pcsketch/differential/surface.h"
 #include "support/analytic_shapes.h"
 
@@ -110,6 +111,20 @@ TEST(Denoise, OffLeavesTheNoise) {
   const Surface s = analyse_surface(cloud, {.denoise = {.enabled = false}, .reorder = false});
   EXPECT_FALSE(s.denoised);
   EXPECT_EQ(cloud.positions, before.positions);
+}
+
+// Noise is the same at every fit size; a coarse shape's misfit grows with it. The share of the residual that stays
+// at 40 neighbours tells them apart: near 1 on a noisy sphere and a noisy torus, small on a clean coarse torus whose
+// tube is 3 spacings across.
+TEST(Denoise, NoiseShareSeparatesNoiseFromMisfit) {
+  const auto share = [](PointCloud cloud) {
+    cloud.normals.clear();
+    const Surface s = analyse_surface(cloud, {.denoise = {.enabled = false}, .reorder = false});
+    return noise_share(cloud.positions, cloud.normals, s.neighbourhoods);
+  };
+  EXPECT_GT(share(noisy_sphere(0.001f, 21)), 0.9f);
+  EXPECT_GT(share(test::torus(1.f, 0.3f, {.n = 20000, .seed = 22, .noise_sigma = 0.004f})), 0.9f);
+  EXPECT_LT(share(test::torus(1.f, 0.1f, {.n = 600, .seed = 23})), 0.5f);
 }
 
 }  // namespace

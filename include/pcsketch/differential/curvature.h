@@ -62,6 +62,12 @@ Curvature estimate_curvature(const std::vector<Vec3f>& points, const std::vector
 float estimate_noise(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                      const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t max_samples = 16384);
 
+/// Share of the shared-k fits' squared residual that does not grow when the fit widens to 40 neighbours (the
+/// nearest of the neighbours' neighbours): noise stays the same at any fit size, the misfit of a shape sampled too
+/// coarsely for a quadric grows as the cube of the fit size. 1 on pure noise, near 0 on a coarse mesh's vertices.
+float noise_share(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
+                  const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t max_samples = 4096);
+
 /// As above; builds a kd-tree only if the fit needs more neighbours than the shared k.
 Curvature estimate_curvature(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                              const neighbourhood::Neighbourhoods& neighbourhoods, const CurvatureOptions& options = {});
