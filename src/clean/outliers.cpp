@@ -2,6 +2,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -9,7 +10,9 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <utility>
 
+#include "core/nth_value.h"
 #include "core/parallel_chunks.h"
 #include "core/union_find.h"
 #include "pcsketch/core/error.h"
@@ -20,11 +23,9 @@ namespace {
 
 using pcsketch::detail::Clusters;
 
-float median(std::vector<float> values) {
-  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), mid, values.end());
-  return *mid;
-}
+constexpr std::size_t kBlockPoints = 8192;  // consecutive (spatially sorted) points joined by one task
+
+float median(const std::vector<float>& values) { return pcsketch::detail::nth_value(values, values.size() / 2); }
 
 /// Distance of point i from the PCA plane of its k nearest neighbours (the point itself not included).
 float plane_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
@@ -41,6 +42,95 @@ float plane_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighb
   eigen.computeDirect(covariance);
   if (!eigen.eigenvectors().allFinite()) return 0.f;
   return static_cast<float>(std::abs(eigen.eigenvectors().col(0).dot(mean)));
+}
+
+/// The links of the cluster graph: dense points to their dense k-NN within `link`; a sparse point to its nearest
+/// dense neighbour within `link` (border), or to none (isolated). Off-surface points have d = ∞: never linked.
+struct Linking {
+  const std::vector<float>& d;
+  const neighbourhood::Neighbourhoods& nbh;
+  std::size_t k;
+  float dense_limit, link;
+
+  /// Calls to(j) for each point j that i links to; whether i belongs to a cluster (dense, or linked).
+  template <class To>
+  bool links(std::size_t i, const To& to) const {
+    const bool dense = d[i] <= dense_limit;
+    bool attached = dense;
+    const auto nb = nbh.of(i);
+    const auto dist = nbh.distances_of(i);
+    for (std::size_t a = 0; a < k && dist[a] <= link && std::isfinite(d[i]); ++a) {
+      if (d[nb[a]] > dense_limit) continue;
+      to(nb[a]);
+      attached = true;
+      if (!dense) break;  // a border point joins its nearest dense neighbour only
+    }
+    return attached;
+  }
+};
+
+/// The clusters: each block of points joins its inner links in parallel, and counts its attached points by block
+/// root; the links between blocks are joined after, serially, and only block roots are resolved to the final roots
+/// (the smallest index of each set, whatever the order of joins). Returns the attached count of each final root
+/// (0 elsewhere); `root` becomes each point's block root, whose parent in `clusters` is the final root.
+std::vector<std::uint32_t> cluster_sizes(const Linking& linking, Clusters& clusters, std::vector<std::uint8_t>& attached,
+                                         std::vector<std::uint32_t>& root) {
+  const std::size_t n = attached.size(), blocks = (n + kBlockPoints - 1) / kBlockPoints;
+  std::vector<std::uint32_t> size(n, 0);
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> crossing(blocks);
+  tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    const std::size_t first = b * kBlockPoints, last = std::min(n, first + kBlockPoints);
+    for (std::size_t i = first; i < last; ++i) {
+      const auto from = static_cast<std::uint32_t>(i);
+      attached[i] = linking.links(i, [&](std::uint32_t j) {
+        if (j >= first && j < last) clusters.join(from, j);
+        else crossing[b].emplace_back(from, j);
+      });
+    }
+    for (std::size_t i = first; i < last; ++i) {
+      root[i] = clusters.find(static_cast<std::uint32_t>(i));
+      size[root[i]] += attached[i];
+    }
+  });
+  for (const auto& list : crossing)
+    for (const auto& [a, b] : list) clusters.join(a, b);
+  // Ascending, so a final root (the smallest of its set) holds its own count when the later block roots add theirs.
+  for (std::uint32_t r = 0; r < n; ++r) {
+    if (root[r] != r) continue;
+    clusters.parent[r] = clusters.find(r);
+    if (clusters.parent[r] != r) size[clusters.parent[r]] += std::exchange(size[r], 0);
+  }
+  return size;
+}
+
+/// Marks the points of no cluster, and those of clusters below the minimum size.
+void mark_small_clusters(const Linking& linking, const OutlierOptions& options, OutlierResult& result) {
+  const std::size_t n = result.outlier.size();
+  Clusters clusters(n);
+  std::vector<std::uint8_t> attached(n, 0);
+  std::vector<std::uint32_t> root(n);
+  const std::vector<std::uint32_t> size = cluster_sizes(linking, clusters, attached, root);
+  // The largest cluster is the surface whatever its size (a small cloud is still a cloud).
+  const auto minimum = std::min<std::size_t>(
+      *std::max_element(size.begin(), size.end()),
+      std::max<std::size_t>(options.min_cluster,
+                            static_cast<std::size_t>(options.min_cluster_fraction * static_cast<double>(n))));
+  using Counts = std::pair<std::size_t, std::size_t>;  // isolated, clustered
+  const Counts counts = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, n, 16384), Counts{0, 0},
+      [&](const tbb::blocked_range<std::size_t>& r, Counts c) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          const bool isolated = !attached[i];
+          const bool clustered = !isolated && size[clusters.parent[root[i]]] < minimum;
+          result.outlier[i] = isolated || clustered;
+          c.first += isolated;
+          c.second += clustered;
+        }
+        return c;
+      },
+      [](Counts a, const Counts& b) { return Counts{a.first + b.first, a.second + b.second}; });
+  result.isolated = counts.first;
+  result.clustered = counts.second;
 }
 
 }  // namespace
@@ -74,43 +164,14 @@ OutlierResult find_outliers(const std::vector<Vec3f>& points, const neighbourhoo
       for (std::size_t i = begin; i != end; ++i) offset[i] = plane_offset(points, nbh, i, k);
     });
     const float off_limit = std::max(options.offset_factor * m, 6.f * median(offset));
-    for (std::size_t i = 0; i < n; ++i)
-      if (offset[i] > off_limit) d[i] = std::numeric_limits<float>::infinity();
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i)
+        if (offset[i] > off_limit) d[i] = std::numeric_limits<float>::infinity();
+    });
   }
 
-  // Dense points linked to their dense k-NN within `link`; a sparse point joins the cluster of its nearest dense
-  // neighbour within `link` (border), or stays alone (isolated).
-  Clusters clusters(n);
-  std::vector<std::uint8_t> attached(n, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const bool dense = d[i] <= dense_limit;
-    attached[i] = dense;
-    const auto nb = nbh.of(i);
-    const auto dist = nbh.distances_of(i);
-    for (std::size_t a = 0; a < k && dist[a] <= link && std::isfinite(d[i]); ++a) {
-      const std::uint32_t j = nb[a];
-      if (d[j] > dense_limit) continue;
-      clusters.join(static_cast<std::uint32_t>(i), j);
-      attached[i] = 1;
-      if (!dense) break;  // a border point joins its nearest dense neighbour only
-    }
-  }
-  std::vector<std::uint32_t> size(n, 0);
-  for (std::size_t i = 0; i < n; ++i) size[clusters.find(static_cast<std::uint32_t>(i))] += attached[i];
-  // The largest cluster is the surface whatever its size (a small cloud is still a cloud).
-  const auto minimum = std::min<std::size_t>(
-      *std::max_element(size.begin(), size.end()),
-      std::max<std::size_t>(options.min_cluster,
-                            static_cast<std::size_t>(options.min_cluster_fraction * static_cast<double>(n))));
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!attached[i]) {
-      result.outlier[i] = 1;
-      ++result.isolated;
-    } else if (size[clusters.find(static_cast<std::uint32_t>(i))] < minimum) {
-      result.outlier[i] = 1;
-      ++result.clustered;
-    }
-  }
+  const Linking linking{d, nbh, k, dense_limit, link};
+  mark_small_clusters(linking, options, result);
   return result;
 }
 

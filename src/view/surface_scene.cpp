@@ -1,6 +1,8 @@
 #include "pcsketch/view/surface_scene.h"
 
 #include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <exception>
@@ -99,7 +101,9 @@ std::vector<float> local_spacing(const neighbourhood::Neighbourhoods& neighbourh
   std::vector<float> spacing(n, 0.f);
   if (neighbourhoods.k == 0) return spacing;
   const std::size_t j = std::min(kth, neighbourhoods.k) - 1;
-  for (std::size_t i = 0; i < n; ++i) spacing[i] = neighbourhoods.distances_of(i)[j];
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) spacing[i] = neighbourhoods.distances_of(i)[j];
+  });
   return spacing;
 }
 
@@ -129,21 +133,25 @@ SurfaceScene::SurfaceScene(const std::vector<Vec3f>& positions, const std::vecto
   auto* disc_normals = static_cast<float*>(
       rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_NORMAL, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), n));
   check_device(impl_->device, "buffer allocation");
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec3f p = positions[i] - impl_->centre;
-    const Vec3f& nrm = normals[i];
-    const float len = nrm.norm();
-    // A point without a usable normal gets a zero radius: it keeps its index (primID = point) but is never hit.
-    const bool usable = std::isfinite(len) && len > 1e-12f && std::isfinite(spacing[i]);
-    const Vec3f unit = usable ? Vec3f(nrm / len) : Vec3f::UnitZ();
-    vertices[4 * i + 0] = p.x();
-    vertices[4 * i + 1] = p.y();
-    vertices[4 * i + 2] = p.z();
-    vertices[4 * i + 3] = usable ? options.disc_radius_factor * spacing[i] : 0.f;
-    disc_normals[3 * i + 0] = unit.x();
-    disc_normals[3 * i + 1] = unit.y();
-    disc_normals[3 * i + 2] = unit.z();
-  }
+  // In parallel: the first writes to Embree's fresh buffers fault their pages in, which is most of this loop's time.
+  const Vec3f centre = impl_->centre;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const Vec3f p = positions[i] - centre;
+      const Vec3f& nrm = normals[i];
+      const float len = nrm.norm();
+      // A point without a usable normal gets a zero radius: it keeps its index (primID = point) but is never hit.
+      const bool usable = std::isfinite(len) && len > 1e-12f && std::isfinite(spacing[i]);
+      const Vec3f unit = usable ? Vec3f(nrm / len) : Vec3f::UnitZ();
+      vertices[4 * i + 0] = p.x();
+      vertices[4 * i + 1] = p.y();
+      vertices[4 * i + 2] = p.z();
+      vertices[4 * i + 3] = usable ? options.disc_radius_factor * spacing[i] : 0.f;
+      disc_normals[3 * i + 0] = unit.x();
+      disc_normals[3 * i + 1] = unit.y();
+      disc_normals[3 * i + 2] = unit.z();
+    }
+  });
   impl_->vertices = vertices;
   impl_->normals = disc_normals;
   impl_->size = n;
