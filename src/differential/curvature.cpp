@@ -9,6 +9,7 @@
 
 #include "common.h"
 #include "graph_curvature.h"
+#include "core/nth_value.h"
 #include "core/parallel_chunks.h"
 #include "group_fit.h"
 
@@ -124,13 +125,14 @@ double median(std::vector<double>& values) {
 /// Points per unit area: median over points of k / (π d_k²), d_k the distance of the k-th neighbour.
 double density(const neighbourhood::Neighbourhoods& neighbourhoods) {
   const std::size_t k = neighbourhoods.k;
-  std::vector<double> rho;
-  rho.reserve(neighbourhoods.size());
-  for (std::size_t i = 0; i < neighbourhoods.size(); ++i) {
-    const double r = neighbourhoods.distances[i * k + k - 1];
-    if (r > 0) rho.push_back(static_cast<double>(k) / (kPi * r * r));
-  }
-  return median(rho);
+  const std::vector<float> farthest = detail::farthest_distances(neighbourhoods);
+  // The density falls as the distance grows: its median over the m points at a distance is the density of the
+  // distance of rank m − 1 − m/2 among theirs, which follow the zero ones.
+  const auto zero = static_cast<std::size_t>(std::count(farthest.begin(), farthest.end(), 0.f));
+  const std::size_t m = farthest.size() - zero;
+  if (m == 0) return 0;
+  const double r = pcsketch::detail::nth_value(farthest, zero + m - 1 - m / 2);
+  return static_cast<double>(k) / (kPi * r * r);
 }
 
 /// Noise σ̂ from the first-pass residuals. A residual mixes noise, the same at any fit size, with the misfit of
