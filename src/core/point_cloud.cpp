@@ -1,5 +1,9 @@
 #include "pcsketch/core/point_cloud.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <numeric>
 
 #include "pcsketch/core/assert.h"
@@ -8,9 +12,19 @@
 namespace pcsketch {
 
 Box3f bounding_box(const std::vector<Vec3f>& positions) {
-  Box3f box;
-  for (const Vec3f& p : positions) box.extend(p);
-  return box;
+  // In parallel: min and max are exact, and each part's box joins the one before it in order, by the same
+  // comparisons as the serial loop, so the box is that loop's for any split (even where -0 meets +0).
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, positions.size(), 16384), Box3f{},
+      [&](const tbb::blocked_range<std::size_t>& r, Box3f box) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) box.extend(positions[i]);
+        return box;
+      },
+      [](Box3f before, const Box3f& after) {
+        before.min = before.min.cwiseMin(after.min);
+        before.max = before.max.cwiseMax(after.max);
+        return before;
+      });
 }
 
 namespace {
@@ -18,7 +32,11 @@ template <class T>
 void apply_order(std::vector<T>& values, const std::vector<std::uint32_t>& order) {
   if (values.empty()) return;
   std::vector<T> out(order.size());
-  for (std::size_t i = 0; i < order.size(); ++i) out[i] = values[order[i]];
+  // A gather of scattered reads: in parallel, each slot written once.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, order.size(), 16384),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t i = r.begin(); i != r.end(); ++i) out[i] = values[order[i]];
+                    });
   values.swap(out);
 }
 }  // namespace

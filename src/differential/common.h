@@ -1,8 +1,12 @@
 #pragma once
 // Helpers shared by the differential stages.
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "pcsketch/core/error.h"
 #include "pcsketch/neighbourhood/neighbourhoods.h"
@@ -21,6 +25,16 @@ inline void check_neighbourhoods(std::string_view stage, std::size_t count,
   if (neighbourhoods.size() != count && !trivial)
     throw Error(std::string(stage) + ": the neighbourhoods cover " + std::to_string(neighbourhoods.size()) +
                 " points but the cloud has " + std::to_string(count));
+}
+
+/// Each point's distance to its k-th (farthest) shared neighbour, gathered in parallel; k must be positive.
+inline std::vector<float> farthest_distances(const neighbourhood::Neighbourhoods& neighbourhoods) {
+  const std::size_t k = neighbourhoods.k, n = neighbourhoods.size();
+  std::vector<float> farthest(n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) farthest[i] = neighbourhoods.distances[i * k + k - 1];
+  });
+  return farthest;
 }
 
 }  // namespace pcsketch::differential::detail

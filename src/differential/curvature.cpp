@@ -1,5 +1,7 @@
 #include "pcsketch/differential/curvature.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include "common.h"
 #include "core/ordered_key.h"
 #include "graph_curvature.h"
+#include "core/nth_value.h"
 #include "core/parallel_chunks.h"
 #include "group_fit.h"
 
@@ -147,13 +150,14 @@ double median(std::vector<double>& values) {
 /// Points per unit area: median over points of k / (π d_k²), d_k the distance of the k-th neighbour.
 double density(const neighbourhood::Neighbourhoods& neighbourhoods) {
   const std::size_t k = neighbourhoods.k;
-  std::vector<double> rho;
-  rho.reserve(neighbourhoods.size());
-  for (std::size_t i = 0; i < neighbourhoods.size(); ++i) {
-    const double r = neighbourhoods.distances[i * k + k - 1];
-    if (r > 0) rho.push_back(static_cast<double>(k) / (kPi * r * r));
-  }
-  return median(rho);
+  const std::vector<float> farthest = detail::farthest_distances(neighbourhoods);
+  // The density falls as the distance grows: its median over the m points at a distance is the density of the
+  // distance of rank m − 1 − m/2 among theirs, which follow the zero ones.
+  const auto zero = static_cast<std::size_t>(std::count(farthest.begin(), farthest.end(), 0.f));
+  const std::size_t m = farthest.size() - zero;
+  if (m == 0) return 0;
+  const double r = pcsketch::detail::nth_value(farthest, zero + m - 1 - m / 2);
+  return static_cast<double>(k) / (kPi * r * r);
 }
 
 /// Noise σ̂ from the first-pass residuals. A residual mixes noise, the same at any fit size, with the misfit of
@@ -189,11 +193,11 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   if (normals.size() != n)
     throw Error("curvature: " + std::to_string(normals.size()) + " normals for " + std::to_string(n) + " points");
   Curvature result;
-  result.k1.resize(n);
-  result.k2.resize(n);
-  result.dir1.resize(n);
+  result.dir1.resize(n);  // Eigen vectors: left unset, no page touched
   result.dir2.resize(n);
-  std::vector<double> residual(n);
+  // The curvatures and residuals (16 B a point) are zeroed as their fresh pages fault in: side by side, not in turn.
+  std::vector<double> residual;
+  tbb::parallel_invoke([&] { result.k1.resize(n); }, [&] { result.k2.resize(n); }, [&] { residual.resize(n); });
   // First pass only: residual of the fit over the nearest kInnerFit neighbours at every stride-th point (points are
   // in space-filling-curve order, so the sample spreads over the surface); its median needs no more than ~16k.
   std::vector<double> inner_residual;

@@ -9,7 +9,9 @@
 #include <span>
 #include <tbb/parallel_sort.h>
 
+#include "common.h"
 #include "graph_curvature.h"
+#include "core/nth_value.h"
 #include "core/ordered_key.h"
 #include "core/parallel_chunks.h"
 
@@ -31,11 +33,16 @@ Vec10 cubic_basis(double x, double y) {
   return b;
 }
 
-/// Estimated radius holding `fit` neighbours of point i: its shared k-th distance scaled by √(fit / k).
+/// Estimated radius holding `fit` neighbours of a point whose k-th shared distance is `kth`: kth scaled by √(fit / k).
+/// Monotone in kth, so the median radius is the radius of the median distance.
+double radius_for(float kth, std::size_t k, std::size_t fit) {
+  return kth * std::sqrt(static_cast<double>(fit) / static_cast<double>(k));
+}
+
+/// Estimated radius holding `fit` neighbours of point i.
 double fit_radius(const neighbourhood::Neighbourhoods& shared, std::size_t i, std::size_t fit) {
   if (shared.k == 0) return 0;
-  return shared.distances[i * shared.k + shared.k - 1] *
-         std::sqrt(static_cast<double>(fit) / static_cast<double>(shared.k));
+  return radius_for(shared.distances[i * shared.k + shared.k - 1], shared.k, fit);
 }
 
 using pcsketch::detail::key_index;
@@ -260,11 +267,9 @@ Groups make_groups(const std::vector<Vec3f>& points, const neighbourhood::Neighb
   const std::size_t n = points.size();
   groups.starts.push_back(0);
   if (n == 0) return groups;
-  std::vector<double> radii(n);
-  for (std::size_t i = 0; i < n; ++i) radii[i] = fit_radius(shared, i, fit);
-  const auto mid = radii.begin() + static_cast<std::ptrdiff_t>(n / 2);
-  std::nth_element(radii.begin(), mid, radii.end());
-  const double side = 2 * fraction * *mid;
+  const double median_radius =
+      shared.k == 0 ? 0 : radius_for(pcsketch::detail::nth_value(farthest_distances(shared), n / 2), shared.k, fit);
+  const double side = 2 * fraction * median_radius;
   Vec3f low = points[0], high = points[0];
   for (const Vec3f& p : points) low = low.cwiseMin(p), high = high.cwiseMax(p);
   // Cell keys of 21 bits an axis (cells grow if the cloud spans more); one sort by (key, index) lists each cell's

@@ -1,5 +1,6 @@
 #include "pcsketch/neighbourhood/neighbourhoods.h"
 
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_group.h>
 
 #include <algorithm>
@@ -19,8 +20,8 @@ Neighbourhoods sized(const std::vector<Vec3f>& points, const NeighbourhoodOption
   Neighbourhoods result;
   const std::size_t n = points.size();
   result.k = n == 0 ? 0 : std::min(options.k, n - 1);
-  result.indices.resize(n * result.k);
-  result.distances.resize(n * result.k);
+  // 64 MB each at 1M points, zeroed as their pages fault in: the two side by side.
+  tbb::parallel_invoke([&] { result.indices.resize(n * result.k); }, [&] { result.distances.resize(n * result.k); });
   return result;
 }
 

@@ -38,7 +38,9 @@ std::vector<std::uint32_t> spatial_order(const std::vector<Vec3f>& points) {
   // Keys are unique (index breaks ties), so the parallel sort is deterministic.
   tbb::parallel_sort(keyed.begin(), keyed.end());
   std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = keyed[i].index;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) order[i] = keyed[i].index;
+  });
   return order;
 }
 

@@ -11,6 +11,7 @@
 #include <span>
 
 #include "pcsketch/core/error.h"
+#include "core/nth_value.h"
 #include "core/progress.h"
 #include "contour_walk.h"
 #include "outline_points.h"
@@ -257,12 +258,10 @@ std::vector<float> spacing_units(const neighbourhood::Neighbourhoods& neighbourh
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) far[i] = neighbourhoods.distances_of(i)[k - 1];
   });
-  std::vector<float> sorted = far;
-  const auto mid = sorted.begin() + static_cast<std::ptrdiff_t>(n / 2);
-  std::nth_element(sorted.begin(), mid, sorted.end());
-  if (!(*mid > 0)) return std::vector<float>(n, h);
+  const float median = pcsketch::detail::nth_value(far, n / 2);
+  if (!(median > 0)) return std::vector<float>(n, h);
   // Averaged over the neighbours: one point's k-th distance scatters by about 30% on a random sampling.
-  const float to_h = h / *mid;
+  const float to_h = h / median;
   std::vector<float> unit(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/nth_value.h"
+
 namespace pcsketch::view::detail {
 namespace {
 
@@ -44,10 +46,10 @@ std::vector<std::uint32_t> first_in_image_cells(const std::vector<Vec3f>& projec
 float low_spacing(const std::vector<float>& spacing_px, const std::vector<std::uint32_t>& valid) {
   if (valid.empty()) return 0.f;
   std::vector<float> s(valid.size());
-  for (std::size_t v = 0; v < valid.size(); ++v) s[v] = spacing_px[valid[v]];
-  const auto low = s.begin() + static_cast<std::ptrdiff_t>(s.size() / 20);
-  std::nth_element(s.begin(), low, s.end());
-  return *low;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, valid.size(), 16384), [&](const auto& r) {
+    for (std::size_t v = r.begin(); v < r.end(); ++v) s[v] = spacing_px[valid[v]];
+  });
+  return pcsketch::detail::nth_value(s, s.size() / 20);
 }
 
 }  // namespace pcsketch::view::detail

@@ -2,6 +2,9 @@
 // A uniform grid over 2D or 3D points for fixed-radius queries (private to the view stage). Dense over the points'
 // bounding box, with the cell size enlarged when needed so the cell count stays within a few times the point count.
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -46,18 +49,18 @@ class PointGrid {
     }
     // Counting sort of the points by cell.
     start_.assign(total + 1, 0);
+    // The cells in parallel (a division per coordinate), the counts and places serially.
     std::vector<std::uint32_t> cell_of(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      cell_of[i] = static_cast<std::uint32_t>(linear(coords(points[i])));
-      ++start_[cell_of[i] + 1];
-    }
+    in_parallel(points.size(),
+                [&](std::size_t i) { cell_of[i] = static_cast<std::uint32_t>(linear(coords(points[i]))); });
+    for (const std::uint32_t c : cell_of) ++start_[c + 1];
     for (std::size_t c = 0; c < total; ++c) start_[c + 1] += start_[c];
     order_.resize(points.size());
     std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < points.size(); ++i) order_[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
     // A copy in cell order: a query then scans contiguous memory instead of chasing indices.
     sorted_.resize(points.size());
-    for (std::size_t k = 0; k < points.size(); ++k) sorted_[k] = points[order_[k]];
+    in_parallel(points.size(), [&](std::size_t k) { sorted_[k] = points[order_[k]]; });
   }
 
   /// Point indices in cell order: iterating queries in this order keeps the scanned cells in cache.
@@ -121,6 +124,14 @@ class PointGrid {
       }
       if (d == D) return true;
     }
+  }
+
+  /// Calls f(i) for every i in [0, n), in parallel; f writes only slot i.
+  template <class F>
+  static void in_parallel(std::size_t n, const F& f) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i != r.end(); ++i) f(i);
+    });
   }
 
   std::size_t total_cells() const { return start_.size() - 1; }
