@@ -278,7 +278,8 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
 
 float estimate_noise(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                      const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t max_samples) {
-  const auto [stride, samples] = sampling("noise estimate", points, normals, neighbourhoods, max_samples, 1);
+  const Sampling sampled = sampling("noise estimate", points, normals, neighbourhoods, max_samples, 1);
+  const std::size_t stride = sampled.stride, samples = sampled.count;  // lambdas capture variables, not bindings
   if (samples == 0) return 0.f;
   const std::size_t k = neighbourhoods.k;
   std::vector<double> residual(samples), inner(k >= kInnerFit + 4 ? samples : 0);
@@ -323,7 +324,8 @@ bool wide_neighbours(const std::vector<Vec3f>& points, const neighbourhood::Neig
 
 float noise_share(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                   const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t max_samples) {
-  const auto [stride, samples] = sampling("noise share", points, normals, neighbourhoods, max_samples, kInnerFit);
+  const Sampling sampled = sampling("noise share", points, normals, neighbourhoods, max_samples, kInnerFit);
+  const std::size_t stride = sampled.stride, samples = sampled.count;
   if (samples == 0) return 1.f;
   const std::size_t k = neighbourhoods.k;
   std::vector<double> outer(samples, -1), wider(samples, -1);
