@@ -77,26 +77,11 @@ std::vector<Vec2f> drawn_samples(Drawing drawing, LineKind kind, bool drawn_only
   return drawn;
 }
 
-nlohmann::json score(const Drawing& drawing, LineKind kind, const std::vector<Vec2f>& truth, bool drawn_only,
-                     bool with_border = false) {
+/// Precision and recall of drawn samples against the truth's, or null where there is no truth.
+nlohmann::json score(const std::vector<Vec2f>& drawn, const std::vector<Vec2f>& truth) {
   if (truth.empty()) return nullptr;
-  const test::LineMatch m =
-      test::match_lines(drawn_samples(drawing, kind, drawn_only, with_border), truth, kTolerancePx);
+  const test::LineMatch m = test::match_lines(drawn, truth, kTolerancePx);
   return {m.precision, m.recall};
-}
-
-/// Whether each of `a` lies within the tolerance of some point of `b` (a grid of tolerance-sized cells).
-std::vector<bool> matched(const std::vector<Vec2f>& a, const std::vector<Vec2f>& b) {
-  std::map<std::pair<int, int>, std::vector<Vec2f>> cells;
-  const auto cell = [](float x) { return static_cast<int>(std::floor(x / kTolerancePx)); };
-  for (const Vec2f& p : b) cells[{cell(p.x()), cell(p.y())}].push_back(p);
-  std::vector<bool> out(a.size(), false);
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (int dx = -1; dx <= 1 && !out[i]; ++dx)
-      for (int dy = -1; dy <= 1 && !out[i]; ++dy)
-        if (const auto it = cells.find({cell(a[i].x()) + dx, cell(a[i].y()) + dy}); it != cells.end())
-          for (const Vec2f& q : it->second) out[i] = out[i] || (q - a[i]).norm() <= kTolerancePx;
-  return out;
 }
 
 /// An SVG of the contour score: truth samples green where drawn near them, red where missed; drawn samples blue
@@ -115,16 +100,14 @@ void write_overlay(const std::string& file, const view::Camera& camera, const Po
   std::vector<Vec2f> projected;
   for (const Vec3f& p : cloud.positions) projected.push_back(camera.project(p).head<2>());
   dots(projected, {}, "#bbb", "#bbb", 0.8f);
-  dots(truth, matched(truth, drawn), "#2a2", "#e22", 1.2f);
-  dots(drawn, matched(drawn, truth), "#22c", "#f80", 0.6f);
+  dots(truth, test::matched_samples(truth, drawn, kTolerancePx), "#2a2", "#e22", 1.2f);
+  dots(drawn, test::matched_samples(drawn, truth, kTolerancePx), "#22c", "#f80", 0.6f);
   out << "</svg>\n";
 }
 
-/// Where --overlay writes its SVGs, empty: none.
-std::string overlay_dir;
-
+/// `overlay_dir`: where --overlay writes its SVGs, empty: none.
 std::string measure(const std::string& model, const Condition& c, std::size_t n, std::size_t views,
-                    const DrawOptions& options, bool drawn_only) {
+                    const DrawOptions& options, bool drawn_only, const std::string& overlay_dir) {
   // A name is a shared mesh; a path (held-out meshes) is read as given.
   const std::string path = model.find('/') == std::string::npos ? shared_data(model + ".off") : model;
   const Mesh mesh = io::read_mesh(path);
@@ -164,13 +147,15 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
     const std::vector<Vec2f> contours = test::mesh_contours(mesh, cam).visible;
     // The truth holds the mesh's border edges with its contours: boundary strokes are scored with the contours (a
     // border drawn on a closed surface counts against precision).
-    per_view.push_back({{"contour", score(d, LineKind::Contour, contours, drawn_only, true)},
-                        {"ridge", score(d, LineKind::Ridge, sharp.convex.visible, drawn_only)},
-                        {"valley", score(d, LineKind::Valley, sharp.concave.visible, drawn_only)}});
+    const std::vector<Vec2f> drawn_contours = drawn_samples(d, LineKind::Contour, drawn_only, true);
+    const auto lines = [&](LineKind kind) { return drawn_samples(d, kind, drawn_only, false); };
+    per_view.push_back({{"contour", score(drawn_contours, contours)},
+                        {"ridge", score(lines(LineKind::Ridge), sharp.convex.visible)},
+                        {"valley", score(lines(LineKind::Valley), sharp.concave.visible)}});
     if (!overlay_dir.empty())
       write_overlay(overlay_dir + "/" + std::filesystem::path(model).stem().string() + "_" + c.name + "_" +
                         std::to_string(v) + ".svg",
-                    cam, prepared.cloud, drawn_samples(d, LineKind::Contour, drawn_only, true), contours);
+                    cam, prepared.cloud, drawn_contours, contours);
   }
   // Outliers left in the analysed cloud, and surface points removed with them.
   std::size_t kept_outliers = 0;
@@ -211,6 +196,7 @@ int run(int argc, char** argv) {
   std::vector<Condition> conditions(std::begin(kConditions), std::end(kConditions));
   DrawOptions options;
   bool drawn_only = false;
+  std::string overlay_dir;
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string flag = argv[a], value = argv[a + 1];
     if (flag == "-n") n = std::stoul(value);
@@ -241,7 +227,9 @@ int run(int argc, char** argv) {
   for (const std::string& model : models)
     for (const Condition& c : conditions) {
       const nlohmann::json r =
-          nlohmann::json::parse(run_isolated([&] { return measure(model, c, n, views, options, drawn_only); }));
+          nlohmann::json::parse(run_isolated([&] {
+            return measure(model, c, n, views, options, drawn_only, overlay_dir);
+          }));
       const double total = r["prepare"].get<double>() + r["view"].get<double>();
       const auto& v = r["views"];
       table.add_row({std::filesystem::path(model).stem().string(), c.name, grouped(r["kept"].get<std::size_t>()),

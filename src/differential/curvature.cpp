@@ -134,7 +134,7 @@ Sampling sampling(const char* stage, const std::vector<Vec3f>& points, const std
                   const neighbourhood::Neighbourhoods& neighbourhoods, std::size_t max_samples, std::size_t min_k) {
   const std::size_t n = points.size();
   detail::check_neighbourhoods(stage, n, neighbourhoods);
-  if (n == 0 || neighbourhoods.k == 0 || neighbourhoods.k < min_k || normals.size() != n) return {};
+  if (n == 0 || neighbourhoods.k < std::max<std::size_t>(min_k, 1) || normals.size() != n) return {};
   const std::size_t stride = sample_stride(n, max_samples);
   return {stride, (n + stride - 1) / stride};
 }
@@ -345,8 +345,9 @@ float noise_share(const std::vector<Vec3f>& points, const std::vector<Vec3f>& no
   if (!(outer_median > 0)) return 1.f;
   // On pure noise the squared medians' ratio is that of the medians of χ²_ν/ν (ν = points − 6); misfit's square
   // grows as (kWideFit/k)³.
-  const double q = (wider_median * wider_median) / (outer_median * outer_median) /
-                   (chi_square_median(static_cast<double>(kWideFit) - 5) / chi_square_median(static_cast<double>(k) - 5));
+  const double pure_noise_ratio =
+      chi_square_median(static_cast<double>(kWideFit) - 5) / chi_square_median(static_cast<double>(k) - 5);
+  const double q = (wider_median * wider_median) / (outer_median * outer_median) / pure_noise_ratio;
   const double c = std::pow(static_cast<double>(kWideFit) / static_cast<double>(k), 3);
   return static_cast<float>(std::clamp((c - q) / (c - 1), 0.0, 1.0));
 }

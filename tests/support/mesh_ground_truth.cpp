@@ -100,11 +100,10 @@ class SampleGrid {
   std::vector<std::size_t> order_;
 };
 
-double fraction_matched(const std::vector<Vec2f>& queries, const SampleGrid& targets, float tolerance) {
+double fraction_matched(const std::vector<Vec2f>& queries, const std::vector<Vec2f>& targets, float tolerance) {
   if (queries.empty()) return 0;
-  std::size_t hits = 0;
-  for (const Vec2f& q : queries) hits += targets.any_within(q, tolerance) ? 1 : 0;
-  return static_cast<double>(hits) / static_cast<double>(queries.size());
+  const std::vector<bool> hit = matched_samples(queries, targets, tolerance);
+  return static_cast<double>(std::count(hit.begin(), hit.end(), true)) / static_cast<double>(queries.size());
 }
 
 /// The faces around one edge of a mesh.
@@ -220,13 +219,20 @@ MeshSharpEdges mesh_sharp_edges(const Mesh& mesh, const view::Camera& camera, fl
   return out;
 }
 
+std::vector<bool> matched_samples(const std::vector<Vec2f>& queries, const std::vector<Vec2f>& targets,
+                                  float tolerance_px) {
+  const SampleGrid grid(targets, std::max(tolerance_px, 1e-3f));
+  std::vector<bool> hit(queries.size());
+  for (std::size_t i = 0; i < queries.size(); ++i) hit[i] = grid.any_within(queries[i], tolerance_px);
+  return hit;
+}
+
 LineMatch match_lines(const std::vector<Vec2f>& drawn, const std::vector<Vec2f>& truth, float tolerance_px) {
   LineMatch m;
   m.drawn = drawn.size();
   m.truth = truth.size();
-  const float cell = std::max(tolerance_px, 1e-3f);
-  m.precision = fraction_matched(drawn, SampleGrid(truth, cell), tolerance_px);
-  m.recall = fraction_matched(truth, SampleGrid(drawn, cell), tolerance_px);
+  m.precision = fraction_matched(drawn, truth, tolerance_px);
+  m.recall = fraction_matched(truth, drawn, tolerance_px);
   return m;
 }
 

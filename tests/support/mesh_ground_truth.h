@@ -72,6 +72,9 @@ struct LineMatch {
   std::size_t drawn = 0, truth = 0;
 };
 
+/// For each of `queries`, whether a point of `targets` lies within `tolerance_px` (image positions, pixels).
+std::vector<bool> matched_samples(const std::vector<Vec2f>& queries, const std::vector<Vec2f>& targets,
+                                  float tolerance_px);
 /// Scores `drawn` against `truth` (image positions, pixels) with a tolerance in pixels. Empty sets score 0.
 LineMatch match_lines(const std::vector<Vec2f>& drawn, const std::vector<Vec2f>& truth, float tolerance_px);
 
