@@ -21,6 +21,8 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <numeric>
+#include <random>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -45,6 +47,9 @@ struct Condition {
   bool one_side = false;
   /// The mesh's own vertices instead of samples (n unused): a sparse cloud whose points lie on the true contours.
   bool vertices = false;
+  /// This many scan lines over the model's height (y), n points along them (scan_line_samples): about 20:1 denser
+  /// along the lines than across at 200k points.
+  std::size_t scan_lines = 0;
 };
 const Condition kConditions[] = {{"clean", 0, 0, 1},
                                  {"0.1%", 0.001, 0, 1},
@@ -55,7 +60,8 @@ const Condition kConditions[] = {{"clean", 0, 0, 1},
                                  {"one side", 0, 0, 1, true},
                                  {"one side 0.1%", 0.001, 0, 1, true},
                                  {"one side + 1% outl.", 0, 0.01, 1, true},
-                                 {"vertices", 0, 0, 1, false, true}};
+                                 {"vertices", 0, 0, 1, false, true},
+                                 {"scan lines", 0, 0, 1, false, false, 60}};
 
 /// Directions of sight: the paper's +z and four oblique ones, none parallel to the default up (+y).
 const Vec3d kViews[] = {{0, 0, 1}, {1, 0.15, 0.6}, {1, 1, 1}, {-1, 0.3, -0.5}, {0.3, -0.6, 1}};
@@ -105,14 +111,51 @@ void write_overlay(const std::string& file, const view::Camera& camera, const Po
   out << "</svg>\n";
 }
 
+/// A profile scanner's points: the mesh cut by `lines` planes y = const evenly spread over its height, the cuts
+/// sampled at one spacing along them so that about `n` points are made (each segment from a random phase).
+PointCloud scan_line_samples(const Mesh& mesh, std::size_t lines, std::size_t n) {
+  float low = mesh.vertices.front().y(), high = low;
+  for (const Vec3f& v : mesh.vertices) low = std::min(low, v.y()), high = std::max(high, v.y());
+  const float gap = (high - low) / static_cast<float>(lines);
+  std::vector<std::pair<Vec3f, Vec3f>> cuts;
+  double length = 0;
+  for (const auto& f : mesh.faces)
+    for (std::size_t l = 0; l < lines; ++l) {
+      const float y = low + (static_cast<float>(l) + 0.5f) * gap;
+      std::vector<Vec3f> ends;
+      for (int e = 0; e < 3; ++e) {
+        const Vec3f& a = mesh.vertices[f[static_cast<std::size_t>(e)]];
+        const Vec3f& b = mesh.vertices[f[static_cast<std::size_t>((e + 1) % 3)]];
+        if ((a.y() < y) != (b.y() < y)) ends.push_back(a + (b - a) * ((y - a.y()) / (b.y() - a.y())));
+      }
+      if (ends.size() != 2) continue;
+      cuts.emplace_back(ends[0], ends[1]);
+      length += static_cast<double>((ends[1] - ends[0]).norm());
+    }
+  const double step = length / static_cast<double>(n);
+  std::mt19937 rng(2024);
+  std::uniform_real_distribution<double> phase(0, 1);
+  PointCloud cloud;
+  cloud.origin = mesh.origin;
+  for (const auto& cut : cuts) {
+    const double l = static_cast<double>((cut.second - cut.first).norm());
+    for (double t = phase(rng) * step; t < l; t += step)
+      cloud.positions.push_back(cut.first + (cut.second - cut.first) * static_cast<float>(t / l));
+  }
+  cloud.source_index.resize(cloud.size());
+  std::iota(cloud.source_index.begin(), cloud.source_index.end(), 0u);
+  return cloud;
+}
+
 /// `overlay_dir`: where --overlay writes its SVGs, empty: none.
 std::string measure(const std::string& model, const Condition& c, std::size_t n, std::size_t views,
                     const DrawOptions& options, bool drawn_only, const std::string& overlay_dir) {
   // A name is a shared mesh; a path (held-out meshes) is read as given.
   const std::string path = model.find('/') == std::string::npos ? shared_data(model + ".off") : model;
   const Mesh mesh = io::read_mesh(path);
-  PointCloud cloud = c.vertices ? io::read_point_cloud(path).cloud
-                                : io::sample_mesh(mesh, {.n = n,
+  PointCloud cloud = c.vertices     ? io::read_point_cloud(path).cloud
+                     : c.scan_lines ? scan_line_samples(mesh, c.scan_lines, n)
+                                    : io::sample_mesh(mesh, {.n = n,
                                             .noise_sigma_factor = c.noise,
                                             .seed = 2024,
                                             .keep_normals = c.one_side,

@@ -60,6 +60,9 @@ void print_timings(const Timings& t, const Prepared& prepared, const std::string
   if (!reduction.empty()) std::printf("%-34s %s\n", "read: reduced", reduction.c_str());
   std::printf("%-34s %10zu  (%zu isolated, %zu in small clumps)\n", "outliers left out", s.outliers.size(),
               s.isolated_outliers, s.clustered_outliers);
+  if (s.scan_lines.found())
+    std::printf("%-34s %10zu  (scan lines %g apart, %.0f× their spacing along them)\n", "thinned on scan lines",
+                s.thinned.size(), s.scan_lines.spacing, s.scan_lines.anisotropy);
   std::printf("%-34s %10.3g  (%s)\n", "noise sigma / h", s.spacing > 0 ? s.input_noise / s.spacing : 0.0,
               s.denoised ? "denoised" : "not denoised");
   std::printf("%-34s %10zu  (%zu points on their own support, the rest share a group's)\n", "curvature fit neighbours",

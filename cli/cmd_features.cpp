@@ -21,8 +21,9 @@
 namespace pcsketch::cli {
 namespace {
 
-/// `label` of the points left out as outliers and of the points on a drawn border (0–2 are features::PointLabel).
-constexpr std::uint8_t kOutlierLabel = 3, kBorderLabel = 4;
+/// `label` of the points left out as outliers, of the points on a drawn border and of the points thinned away on scan
+/// lines (0–2 are features::PointLabel).
+constexpr std::uint8_t kOutlierLabel = 3, kBorderLabel = 4, kThinnedLabel = 5;
 
 struct FeaturesArgs {
   std::string in_path;
@@ -42,8 +43,8 @@ std::vector<T> in_file_order(const std::vector<T>& values, const std::vector<std
   return out;
 }
 
-/// The analysed points followed by the outliers analyse_surface left out (normals zero where they have none): every
-/// point of the file, so that `label` can mark the outliers instead of dropping them.
+/// `cloud` followed by points analyse_surface left out (normals zero where they have none): with the outliers and the
+/// points thinned on scan lines, every point of the file, so that `label` can mark them instead of dropping them.
 PointCloud with_outliers(const PointCloud& cloud, const PointCloud& outliers) {
   PointCloud all = cloud;
   if (outliers.empty()) return all;
@@ -155,8 +156,8 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
                                                                 boundary_options);
 
   // Written in the file's point order, so the scalar fields line up with the input cloud; outliers get label 3, the
-  // points of a drawn border 4 (a ridge at a scan's edge is the edge).
-  PointCloud out = with_outliers(cloud, surface.outliers);
+  // points of a drawn border 4 (a ridge at a scan's edge is the edge), the points thinned on scan lines 5.
+  PointCloud out = with_outliers(with_outliers(cloud, surface.outliers), surface.thinned);
   const std::size_t removed = surface.outliers.size();
   std::vector<float> k1 = surface.curvature.k1, k2 = surface.curvature.k2, ki = result.detection.feature_curvature;
   std::vector<std::uint8_t> labels(cloud.size());
@@ -165,7 +166,8 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
                     ? kBorderLabel
                     : static_cast<std::uint8_t>(result.detection.labels[i]);
   for (std::vector<float>* values : {&k1, &k2, &ki}) values->resize(out.size(), 0.f);
-  labels.resize(out.size(), kOutlierLabel);
+  labels.resize(cloud.size() + removed, kOutlierLabel);
+  labels.resize(out.size(), kThinnedLabel);
   k1 = in_file_order(k1, out.source_index);
   k2 = in_file_order(k2, out.source_index);
   ki = in_file_order(ki, out.source_index);
@@ -178,7 +180,7 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
   io::PlyWriteOptions write{.format = args.ascii ? io::PlyFormat::Ascii : io::PlyFormat::BinaryLittleEndian};
   write.comments.push_back("pcsketch features " + args.in_path + ": k1 >= k2 principal curvatures (convex > 0), "
                            "k_feature = the one of larger magnitude, label 0 none 1 ridge 2 valley 3 outlier "
-                           "(left out of the analysis) 4 border of an open scan");
+                           "(left out of the analysis) 4 border of an open scan 5 thinned on scan lines");
   io::write_ply(args.out_path, out,
                 {{"k1", std::span<const float>(k1)},
                  {"k2", std::span<const float>(k2)},
@@ -209,8 +211,8 @@ void add_features_command(CLI::App& app, const GlobalOptions& global) {
   add_memory_option(cmd, args->options.max_memory_gb);
   cmd->add_option("-o,--output", args->out_path,
                   "Output PLY: x y z, nx ny nz, k1 k2 k_feature (float, 1/model units), label (uchar: 0 none, "
-                  "1 ridge, 2 valley, 3 outlier left out of the analysis, 4 border of an open scan); every point "
-                  "of the input, in its order")
+                  "1 ridge, 2 valley, 3 outlier left out of the analysis, 4 border of an open scan, 5 thinned on "
+                  "scan lines); every point of the input, in its order")
       ->required();
   cmd->add_option("--lines", args->lines_path,
                   "Also write the ridge/valley and boundary polylines (world coordinates) as JSON");

@@ -37,6 +37,20 @@ void add_cleaning(Builder& b) {
          .help = "Detached clumps with fewer points are left out (at least 0.05% of the cloud)"});
   b.add(PCSKETCH_OPTION(surface.outliers.min_cluster_fraction),
         {.range = closed(0, 1), .help = "Detached clumps with fewer than this fraction of the points are left out"});
+  b.add(PCSKETCH_OPTION(surface.scan_lines.enabled),
+        {.flag = "--keep-scan-lines",
+         .negated = true,
+         .help = "Keep every point of a cloud on scan lines (default: points far denser along lines than across "
+                 "them are thinned to the lines' spacing)"});
+  b.add(PCSKETCH_OPTION(surface.scan_lines.linearity),
+        {.range = closed(0, 1), .help = "8 nearest neighbours make a line under this ratio of PCA eigenvalues λ2/λ1"});
+  b.add(PCSKETCH_OPTION(surface.scan_lines.min_fraction),
+        {.range = closed(0, 1), .help = "A cloud lies on scan lines when more of its neighbourhoods than this are lines"});
+  b.add(PCSKETCH_OPTION(surface.scan_lines.min_anisotropy),
+        {.range = closed(1, 1e6),
+         .help = "...and its lines lie this many times farther apart than their points along them"});
+  b.add(PCSKETCH_OPTION(surface.scan_lines.cell_factor),
+        {.range = positive(100), .unit = "line spacings", .help = "Cube edge of the thinning of scan lines"});
   b.add(PCSKETCH_OPTION(surface.denoise.enabled),
         {.flag = "--no-denoise",
          .negated = true,

@@ -79,6 +79,8 @@ nlohmann::json parameters_json(const Prepared& prepared, const DrawOptions& opti
                    {"outliers_removed", prepared.surface.outliers.size()},
                    {"isolated_outliers", prepared.surface.isolated_outliers},
                    {"clustered_outliers", prepared.surface.clustered_outliers},
+                   {"scan_line_spacing", prepared.surface.scan_lines.spacing},
+                   {"scan_line_thinned", prepared.surface.thinned.size()},
                    {"input_noise_sigma", prepared.surface.input_noise},
                    {"denoised", prepared.surface.denoised},
                    {"normal_noise", prepared.surface.normal_noise},
@@ -203,6 +205,7 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   const differential::SurfaceTimings& st = p.surface.timings;
   p.timings.reorder = st.reorder;
   p.timings.neighbourhoods = st.neighbourhoods;
+  p.timings.scan_lines = st.scan_lines;
   p.timings.outliers = st.outliers;
   p.timings.denoise = st.denoise;
   p.timings.normals = st.normals + st.orientation;

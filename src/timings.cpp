@@ -10,10 +10,11 @@ namespace {
 
 /// Every stage of Timings in pipeline order with its row name (the paper's Table 2 name where it has one): the one
 /// list that total(), all_rows() and += walk.
-constexpr std::array<std::pair<std::string_view, double Timings::*>, 16> kTimingRows{{
+constexpr std::array<std::pair<std::string_view, double Timings::*>, 17> kTimingRows{{
     {"read", &Timings::read},
     {"reorder", &Timings::reorder},
     {"neighbourhoods", &Timings::neighbourhoods},
+    {"scan lines", &Timings::scan_lines},
     {"outliers", &Timings::outliers},
     {"denoise", &Timings::denoise},
     {"normals", &Timings::normals},

@@ -76,6 +76,7 @@ struct Timings {
   double read = 0;                    ///< reading the file (filled by the caller that read it)
   double reorder = 0;                 ///< spatial reordering
   double neighbourhoods = 0;          ///< kd-tree and k-NN lists
+  double scan_lines = 0;              ///< finding scan lines and thinning them (clean::find_scan_lines)
   double outliers = 0;                ///< finding outliers and leaving them out of the cloud
   double denoise = 0;                 ///< noise estimate and, on noisy clouds, feature-preserving denoising
   double normals = 0;                 ///< PCA normals and orientation

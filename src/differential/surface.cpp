@@ -9,6 +9,7 @@
 
 #include "core/progress.h"
 #include "pcsketch/core/error.h"
+#include "pcsketch/io/decimate.h"
 #include "pcsketch/neighbourhood/spacing.h"
 #include "pcsketch/neighbourhood/spatial_order.h"
 
@@ -64,6 +65,43 @@ neighbourhood::Neighbourhoods index_neighbourhoods(const std::vector<Vec3f>& poi
 
 void append(Warnings& to, const Warnings& from) { to.insert(to.end(), from.begin(), from.end()); }
 
+/// Moves the points flagged in `out` from `cloud` to the returned cloud (both keep their order).
+PointCloud split_off(PointCloud& cloud, const std::vector<std::uint8_t>& out) {
+  std::vector<std::uint32_t> kept, removed;
+  for (std::uint32_t i = 0; i < cloud.size(); ++i) (out[i] ? removed : kept).push_back(i);
+  PointCloud split = cloud;
+  select(split, removed);
+  select(cloud, kept);
+  return split;
+}
+
+/// Thins a cloud that lies on scan lines (clean::find_scan_lines) to one point per cube of a fraction of the lines'
+/// spacing, the points left out moved to surface.thinned, and recomputes the tree and neighbourhoods of what is left.
+void thin_scan_lines(PointCloud& cloud, Surface& surface, std::optional<neighbourhood::KdTree>& tree,
+                     const SurfaceOptions& options) {
+  SurfaceTimings& t = surface.timings;
+  surface.scan_lines = timed(t.scan_lines, [&] {
+    return clean::find_scan_lines(cloud.positions, surface.neighbourhoods, *tree, options.scan_lines);
+  });
+  if (!surface.scan_lines.found()) return;
+  const std::size_t before = cloud.size();
+  const double cell = options.scan_lines.cell_factor * surface.scan_lines.spacing;
+  timed(t.scan_lines, [&] {
+    std::vector<std::uint8_t> out(cloud.size(), 1);
+    for (const std::uint32_t i : io::voxel_representatives(cloud, cell)) out[i] = 0;
+    surface.thinned = split_off(cloud, out);
+  });
+  char message[320];
+  std::snprintf(message, sizeof message,
+                "surface analysis: the points lie on scan lines %g apart, %.0f times their spacing along them (%.0f%% "
+                "of the neighbourhoods): thinned to one point per cube of edge %g, %zu of %zu points kept "
+                "(--keep-scan-lines keeps them all)",
+                surface.scan_lines.spacing, surface.scan_lines.anisotropy, 100.0 * surface.scan_lines.line_fraction,
+                cell, cloud.size(), before);
+  surface.warnings.emplace_back(message);
+  surface.neighbourhoods = index_neighbourhoods(cloud.positions, tree, surface.timings, options);
+}
+
 /// Moves the outliers of `cloud` to surface.outliers and recomputes the tree and neighbourhoods of what is left
 /// (only when there are outliers: a clean cloud keeps the ones it has).
 void remove_outliers(PointCloud& cloud, Surface& surface, std::optional<neighbourhood::KdTree>& tree,
@@ -75,13 +113,7 @@ void remove_outliers(PointCloud& cloud, Surface& surface, std::optional<neighbou
                                     with_progress(options.outliers, options.progress));
       });
   if (found.removed() == 0) return;
-  timed(t.outliers, [&] {
-    std::vector<std::uint32_t> kept, removed;
-    for (std::uint32_t i = 0; i < cloud.size(); ++i) (found.outlier[i] ? removed : kept).push_back(i);
-    surface.outliers = cloud;
-    select(surface.outliers, removed);
-    select(cloud, kept);
-  });
+  timed(t.outliers, [&] { surface.outliers = split_off(cloud, found.outlier); });
   surface.isolated_outliers = found.isolated;
   surface.clustered_outliers = found.clustered;
   surface.neighbourhoods = index_neighbourhoods(cloud.positions, tree, surface.timings, options);
@@ -117,6 +149,7 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
   std::optional<neighbourhood::KdTree> tree;
   ProgressReporter(options.progress, "neighbourhoods")(0.0);  // the tree's build is part of the stage
   surface.neighbourhoods = index_neighbourhoods(cloud.positions, tree, t, options);
+  thin_scan_lines(cloud, surface, tree, options);
   remove_outliers(cloud, surface, tree, options);
   surface.spacing = neighbourhood::mean_spacing(surface.neighbourhoods);
 

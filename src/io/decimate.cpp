@@ -69,6 +69,11 @@ double cell_for(const PointCloud& cloud, std::size_t max_points) {
 
 }  // namespace
 
+std::vector<std::uint32_t> voxel_representatives(const PointCloud& cloud, double cell) {
+  if (!(cell > 0) || !std::isfinite(cell)) throw Error("decimate: the cell edge must be positive");
+  return representatives(cloud, cell);
+}
+
 double resolution_cell(const OutputResolution& r, const Vec3d& extent) {
   std::array<double, 3> sides{extent.x(), extent.y(), extent.z()};
   std::sort(sides.begin(), sides.end());

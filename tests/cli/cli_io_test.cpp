@@ -12,6 +12,7 @@
 
 #include "pcsketch/io/read_cloud.h"
 #include "cli_test_support.h"
+#include "support/scan_lines.h"
 
 namespace pcsketch {
 namespace {
@@ -90,6 +91,37 @@ TEST_F(CliIo, FeaturesLabelsTheBorderOfAnOpenSheet) {
   const CommandRun off = run("-q features " + path("sheet.xyz") + " --ascii --no-boundary-detection -o " + path("g.ply"));
   ASSERT_EQ(off.status, 0) << off.err;
   EXPECT_EQ(slurp(path("g.ply")).find(" 4\n"), std::string::npos);
+}
+
+TEST_F(CliIo, FeaturesLabelsThePointsThinnedOnScanLines) {
+  // A sphere on 40 rings, 20 times denser along them than apart: thinned, and every point of the file still written,
+  // those left out labelled 5, in the file's order.
+  const std::vector<Vec3f> rings = test::sphere_rings(40, 20.f);
+  {
+    std::ofstream out(path("rings.xyz"));
+    for (const Vec3f& p : rings) out << p.x() << " " << p.y() << " " << p.z() << "\n";
+  }
+  const CommandRun r = run("features " + path("rings.xyz") + " --ascii -o " + path("r.ply"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("scan lines"), std::string::npos) << r.err;
+  std::istringstream ply(slurp(path("r.ply")));
+  std::string line;
+  while (std::getline(ply, line) && line != "end_header") {
+  }
+  std::size_t row = 0, thinned = 0;
+  for (; std::getline(ply, line); ++row) {
+    ASSERT_LT(row, rings.size());
+    std::istringstream fields(line);
+    Vec3f p;
+    fields >> p.x() >> p.y() >> p.z();
+    EXPECT_LT((p - rings[row]).norm(), 1e-4f) << "row " << row;
+    thinned += std::stoi(line.substr(line.find_last_of(' ') + 1)) == 5;
+  }
+  EXPECT_EQ(row, rings.size());
+  EXPECT_GT(thinned, rings.size() / 2);
+  const CommandRun kept = run("-q features " + path("rings.xyz") + " --ascii --keep-scan-lines -o " + path("k.ply"));
+  ASSERT_EQ(kept.status, 0) << kept.err;
+  EXPECT_EQ(slurp(path("k.ply")).find(" 5\n"), std::string::npos);
 }
 
 }  // namespace

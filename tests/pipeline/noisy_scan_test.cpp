@@ -10,6 +10,7 @@
 
 #include "pcsketch/pipeline.h"
 #include "support/analytic_shapes.h"
+#include "support/scan_lines.h"
 
 namespace pcsketch {
 namespace {
@@ -199,6 +200,44 @@ TEST(OpenScan, SparseHalfSphereSeenFromItsOpenSideIsClosed) {
   no_borders.lines.boundaries = false;
   const DrawResult without = draw_view(prepared, options.camera, no_borders);
   EXPECT_LE(circle_covered_by(without.drawing, outline, h_px, painted), 0.2);
+}
+
+
+/// Visible contour and boundary strokes of a drawing of the unit sphere: how much of its circle they cover (within
+/// `tolerance`), and their length in pixels off it.
+struct SphereStrokes {
+  double covered = 0;
+  float off = 0;
+};
+SphereStrokes sphere_strokes(const Prepared& prepared, const DrawOptions& options, float tolerance) {
+  const DrawResult r = draw_view(prepared, options.camera, options);
+  const Circle circle = projected_unit_sphere(prepared, options.camera);
+  const auto drawn = [](const Stroke& s) { return s.visible && (s.kind == LineKind::Contour || s.kind == LineKind::Boundary); };
+  SphereStrokes out{circle_covered_by(r.drawing, circle, tolerance, drawn), 0.f};
+  for (const Stroke& s : r.drawing.strokes)
+    if (drawn(s))
+      for (std::size_t i = 1; i < s.image_points.size(); ++i)
+        if (circle.distance(s.image_points[i]) > tolerance)
+          out.off += (s.image_points[i] - s.image_points[i - 1]).norm();
+  return out;
+}
+
+TEST(ScanLines, SphereOnRingsIsDrawnAsItsCircle) {
+  // 40 rings of latitude, 20 times denser along them than apart, seen from the side: drawn as they are, every ring is
+  // a line across the disc; thinned to the rings' spacing, the drawing is the sphere's outline.
+  PointCloud cloud;
+  cloud.positions = test::sphere_rings(40, 20.f);
+  const DrawOptions options;
+  const Prepared prepared = prepare(PointCloud(cloud), options);
+  ASSERT_TRUE(prepared.surface.scan_lines.found());
+  EXPECT_EQ(prepared.cloud.size() + prepared.surface.thinned.size(), cloud.size());
+  EXPECT_LT(prepared.cloud.size(), cloud.size() / 4);
+  const SphereStrokes thinned = sphere_strokes(prepared, options, 6.f);
+  EXPECT_GE(thinned.covered, 0.9);
+  DrawOptions keep = options;
+  keep.surface.scan_lines.enabled = false;
+  const SphereStrokes kept = sphere_strokes(prepare(std::move(cloud), keep), keep, 6.f);
+  EXPECT_LT(thinned.off, 0.1f * kept.off);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "pcsketch/clean/outliers.h"
+#include "pcsketch/clean/scan_lines.h"
 #include "pcsketch/core/point_cloud.h"
 #include "pcsketch/core/report.h"
 #include "pcsketch/differential/curvature.h"
@@ -18,6 +19,7 @@ namespace pcsketch::differential {
 struct SurfaceOptions {
   neighbourhood::NeighbourhoodOptions neighbourhood;
   clean::OutlierOptions outliers;
+  clean::ScanLineOptions scan_lines;
   DenoiseOptions denoise;
   NormalOptions normals;
   OrientOptions orientation;
@@ -40,7 +42,8 @@ struct SurfaceOptions {
 /// Seconds spent in each step, for --timings and bench/. `neighbourhoods` includes the kd-tree's build, which runs
 /// beside the neighbour search.
 struct SurfaceTimings {
-  double reorder = 0, neighbourhoods = 0, outliers = 0, denoise = 0, normals = 0, orientation = 0, curvature = 0;
+  double reorder = 0, neighbourhoods = 0, scan_lines = 0, outliers = 0, denoise = 0, normals = 0, orientation = 0,
+         curvature = 0;
 };
 
 struct Surface {
@@ -50,6 +53,9 @@ struct Surface {
   /// them, the user's data still does.
   PointCloud outliers;
   std::size_t isolated_outliers = 0, clustered_outliers = 0;  ///< how many of them were isolated / in small clumps
+  clean::ScanLines scan_lines;  ///< whether the points lie on scan lines, and the lines' spacing
+  /// On scan lines, the points the thinning to the lines' spacing left out, with their source_index.
+  PointCloud thinned;
   Curvature curvature;
   bool normals_estimated = false;  ///< normals come from PCA (not from the file)
   bool denoised = false;           ///< the points were moved by denoise() (the noise exceeded its trigger)
@@ -62,8 +68,9 @@ struct Surface {
   Warnings warnings;
 };
 
-/// Runs every view-independent step on `cloud`, which it reorders, rids of outliers (moved to Surface::outliers),
-/// denoises when noisy and gives normals (oriented) in place.
+/// Runs every view-independent step on `cloud`, which it reorders, thins when it lies on scan lines (the points left
+/// out moved to Surface::thinned), rids of outliers (moved to Surface::outliers), denoises when noisy and gives
+/// normals (oriented) in place.
 /// Collinear or coplanar clouds get a defined result (arbitrary perpendicular normals, zero curvature) and warnings.
 /// @param tree_out when given, receives the kd-tree over `cloud.positions` as left (the analysis builds one), so that
 ///        later stages need not build it again; left empty when the points were denoised (the tree then indexes the

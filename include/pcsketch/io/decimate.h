@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "pcsketch/core/point_cloud.h"
 
@@ -58,6 +59,9 @@ struct DecimateReport {
   std::string reason;  ///< why: "--voxel", "--max-points", or the resolution rule with its budget and image
   bool streamed = false;  ///< the file was thinned while read, never held whole (docs/io.md, "Large clouds")
 };
+
+/// The points decimate() keeps with a cell of edge `cell` (> 0), ascending.
+std::vector<std::uint32_t> voxel_representatives(const PointCloud& cloud, double cell);
 
 /// Keeps one point per occupied cell of a grid of cubes of edge `cell` anchored at the bounding box's minimum: the
 /// point nearest the cell's centre (ties: the smallest position, x then y then z). Survivors keep their order; every

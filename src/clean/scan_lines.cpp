@@ -1,0 +1,96 @@
+#include "pcsketch/clean/scan_lines.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "pcsketch/core/error.h"
+
+namespace pcsketch::clean {
+
+namespace {
+
+/// Neighbours whose PCA tells a line: on 4:1 scan lines the nearest 8 still lie on the point's own line.
+constexpr std::size_t kLineNeighbours = 8;
+/// Neighbours searched first for the nearest point off a line (20:1 lines put it about 40th).
+constexpr std::size_t kAcross = 64;
+
+/// λ2/λ1 of the covariance of point i and its nearest kLineNeighbours, and the principal direction.
+double linearity(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
+                 Vec3d& direction) {
+  const auto near = nbh.of(i).first(std::min(kLineNeighbours, nbh.k));
+  Vec3d mean = points[i].cast<double>();
+  for (const std::uint32_t j : near) mean += points[j].cast<double>();
+  mean /= static_cast<double>(near.size() + 1);
+  Eigen::Matrix3d c = (points[i].cast<double>() - mean) * (points[i].cast<double>() - mean).transpose();
+  for (const std::uint32_t j : near) {
+    const Vec3d d = points[j].cast<double>() - mean;
+    c += d * d.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(c);
+  direction = eig.eigenvectors().col(2);
+  const double largest = eig.eigenvalues()[2];
+  return largest > 0 ? eig.eigenvalues()[1] / largest : 1.0;
+}
+
+/// Point i lies on a scan line (its nearest kLineNeighbours make a line, direction t) next to a parallel one: the
+/// nearest point more than 60° off t has a line neighbourhood within 25° of t. Returns the distance to that point,
+/// -1 where i is on no line, 0 on a line with no parallel neighbour (a wire, an edge) among its nearest kAcross (or,
+/// on lines so far apart that none is off the line, 4 kAcross).
+double across(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh,
+              const neighbourhood::KdTree& tree, std::size_t i, float max_linearity, std::vector<std::uint32_t>& found,
+              std::vector<float>& distances) {
+  Vec3d t, u;
+  if (!(linearity(points, nbh, i, t) < max_linearity)) return -1;
+  for (const std::size_t k : {kAcross, 4 * kAcross}) {
+    tree.knn_of_point(i, std::min(k, points.size() - 1), found, distances);
+    for (std::size_t m = 0; m < found.size(); ++m) {
+      const Vec3d d = (points[found[m]] - points[i]).cast<double>();
+      if (!(distances[m] > 0 && std::abs(d.dot(t)) < 0.5 * d.norm())) continue;
+      const bool parallel = linearity(points, nbh, found[m], u) < max_linearity && std::abs(u.dot(t)) > 0.9;
+      return parallel ? distances[m] : 0;
+    }
+  }
+  return 0;
+}
+
+/// The value of rank `fraction` of `values` (reordered), 0.5 the median.
+double quantile(std::vector<double>& values, double fraction) {
+  const auto at = values.begin() + static_cast<std::ptrdiff_t>(fraction * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), at, values.end());
+  return *at;
+}
+
+}  // namespace
+
+ScanLines find_scan_lines(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& neighbourhoods,
+                          const neighbourhood::KdTree& tree, const ScanLineOptions& options) {
+  const std::size_t n = points.size();
+  if (neighbourhoods.size() != n || tree.size() != n)
+    throw Error("scan lines: the neighbourhoods or the kd-tree do not match the " + std::to_string(n) + " points");
+  ScanLines result;
+  if (!options.enabled || n < 2 * kAcross || neighbourhoods.k < kLineNeighbours || options.max_samples == 0)
+    return result;
+  const std::size_t stride = std::max<std::size_t>(1, n / options.max_samples), samples = (n + stride - 1) / stride;
+  std::vector<double> gaps(samples), nearest(samples);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples, 64), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::uint32_t> found;
+    std::vector<float> distances;
+    for (std::size_t s = r.begin(); s != r.end(); ++s) {
+      nearest[s] = neighbourhoods.distances_of(s * stride)[0];
+      gaps[s] = across(points, neighbourhoods, tree, s * stride, options.linearity, found, distances);
+    }
+  });
+  std::erase_if(gaps, [](double g) { return !(g > 0); });
+  result.line_fraction = static_cast<double>(gaps.size()) / static_cast<double>(samples);
+  if (!(result.line_fraction > options.min_fraction)) return result;
+  result.anisotropy = quantile(gaps, 0.5) / std::max(quantile(nearest, 0.5), 1e-30);
+  // Where a surface slopes along the lines, they lie farther apart on it than their spacing: the lower quartile.
+  if (result.anisotropy >= options.min_anisotropy) result.spacing = quantile(gaps, 0.25);
+  return result;
+}
+
+}  // namespace pcsketch::clean

@@ -1,0 +1,42 @@
+// Known answers of the scan-line detector: a sphere recorded on rings is found with the rings' spacing; evenly sampled
+// shapes, noisy or not, are not.
+
+#include "pcsketch/clean/scan_lines.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/analytic_shapes.h"
+#include "support/scan_lines.h"
+
+namespace pcsketch::clean {
+namespace {
+
+ScanLines run(const std::vector<Vec3f>& points, const ScanLineOptions& options = {}) {
+  const neighbourhood::KdTree tree(points);
+  const neighbourhood::Neighbourhoods nbh = neighbourhood::compute_neighbourhoods(tree, points);
+  return find_scan_lines(points, nbh, tree, options);
+}
+
+TEST(ScanLines, RingsOfASphereAreFoundWithTheirSpacing) {
+  // 40 rings, 20 times denser along them than they are apart: their spacing is the chord of a latitude step.
+  const std::vector<Vec3f> rings = test::sphere_rings(40, 20.f);
+  const ScanLines found = run(rings);
+  ASSERT_TRUE(found.found());
+  EXPECT_GT(found.line_fraction, 0.5);
+  EXPECT_GT(found.anisotropy, 10.0);
+  const double step = 2 * std::sin(0.5 * 3.14159265358979 / 41);
+  EXPECT_NEAR(found.spacing, step, 0.25 * step);
+  EXPECT_FALSE(run(rings, {.enabled = false}).found());
+}
+
+TEST(ScanLines, EvenSamplesAreNotLines) {
+  EXPECT_FALSE(run(test::sphere(1.f, {.n = 20000, .seed = 4}).positions).found());
+  EXPECT_FALSE(run(test::cube(1.f, {.n = 20000, .seed = 4, .noise_sigma = 0.004f}).positions).found());
+  // 4:1 rings: the nearest neighbours still span two rings often enough; drawn as they are.
+  EXPECT_FALSE(run(test::sphere_rings(80, 4.f)).found());
+}
+
+}  // namespace
+}  // namespace pcsketch::clean
