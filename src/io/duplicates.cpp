@@ -71,8 +71,10 @@ void mark_copies(const Buckets& buckets, std::size_t b, std::vector<std::uint8_t
         duplicate = true;
         break;
       }
-    if (duplicate) copy[buckets.index[at]] = 1;
-    else table[slot] = at - first + 1;
+    if (duplicate)
+      copy[buckets.index[at]] = 1;
+    else
+      table[slot] = at - first + 1;
   }
 }
 
@@ -85,8 +87,7 @@ std::size_t collapse_duplicates(RawCloud& raw) {
   std::vector<std::uint8_t> copy(n, 0);
   {
     const Buckets buckets(raw.positions);
-    tbb::parallel_for(std::size_t{0}, buckets.start.size() - 1,
-                      [&](std::size_t b) { mark_copies(buckets, b, copy); });
+    tbb::parallel_for(std::size_t{0}, buckets.start.size() - 1, [&](std::size_t b) { mark_copies(buckets, b, copy); });
   }
   std::size_t kept = 0;
   for (std::size_t i = 0; i < n; ++i) {

@@ -5,7 +5,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -60,7 +59,7 @@ std::vector<MortonKeyed> sorted_codes(const std::vector<Vec3f>& points, const Fi
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const auto& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) keyed[i] = {cells.code_of(points[i]), std::uint32_t(i)};
   });
-  if (!std::is_sorted(keyed.begin(), keyed.end())) tbb::parallel_sort(keyed.begin(), keyed.end());
+  if (!std::is_sorted(keyed.begin(), keyed.end())) sort_keyed(keyed);
   return keyed;
 }
 

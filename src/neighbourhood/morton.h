@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "pcsketch/core/point_cloud.h"
 
@@ -55,5 +56,9 @@ struct MortonKeyed {
   std::uint32_t index;
   bool operator<(const MortonKeyed& o) const { return code < o.code || (code == o.code && index < o.index); }
 };
+
+/// Sorts `keyed` (what tbb::parallel_sort would give: the keys are unique), by buckets of the codes' top bits in
+/// parallel, then each bucket in cache.
+void sort_keyed(std::vector<MortonKeyed>& keyed);
 
 }  // namespace pcsketch::neighbourhood::detail

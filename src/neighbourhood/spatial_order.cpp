@@ -2,7 +2,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <limits>
@@ -21,10 +20,10 @@ std::vector<std::uint32_t> spatial_order(const std::vector<Vec3f>& points) {
   const detail::FinestCells cells(bounding_box(points));
   std::vector<MortonKeyed> keyed(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) keyed[i] = {cells.code_of(points[i]), static_cast<std::uint32_t>(i)};
+    for (std::size_t i = r.begin(); i < r.end(); ++i)
+      keyed[i] = {cells.code_of(points[i]), static_cast<std::uint32_t>(i)};
   });
-  // Keys are unique (index breaks ties), so the parallel sort is deterministic.
-  tbb::parallel_sort(keyed.begin(), keyed.end());
+  detail::sort_keyed(keyed);
   std::vector<std::uint32_t> order(n);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i < r.end(); ++i) order[i] = keyed[i].index;
