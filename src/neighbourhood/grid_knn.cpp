@@ -122,6 +122,8 @@ struct Grid {
     }
   }
   std::size_t cells() const { return codes.size(); }
+  /// Starts loading the table slot of `code` (a hint: no effect on the result).
+  void prefetch(std::uint64_t code) const { __builtin_prefetch(&slots[slot(code)]); }
 
  private:
   /// The cell of `code`, added (with a zero count in start) if new; the table doubles at half full.
@@ -187,10 +189,17 @@ struct Candidates {
     const std::uint64_t code = grid.codes[cell];
     centre = {compact_bits(code), compact_bits(code >> 1), compact_bits(code >> 2)};
     const Cell& c = centre;
+    // The codes around first, their table slots fetched together: one at a time, each lookup waits on a cache miss.
+    std::array<std::uint64_t, 27> around;
+    std::size_t count = 0;
     for (const auto& [dx, dy, dz] : kAround) {
       const std::int64_t cx = std::int64_t(c[0]) + dx, cy = std::int64_t(c[1]) + dy, cz = std::int64_t(c[2]) + dz;
       if (std::min({cx, cy, cz}) < 0 || std::max({cx, cy, cz}) > kMortonMax) continue;
-      const std::int64_t other = grid.find(morton(std::uint32_t(cx), std::uint32_t(cy), std::uint32_t(cz)));
+      around[count] = morton(std::uint32_t(cx), std::uint32_t(cy), std::uint32_t(cz));
+      grid.prefetch(around[count++]);
+    }
+    for (std::size_t a = 0; a < count; ++a) {
+      const std::int64_t other = grid.find(around[a]);
       if (other < 0) continue;
       for (std::uint32_t r = grid.start[std::size_t(other)]; r < grid.start[std::size_t(other) + 1]; ++r) {
         const Vec3f& p = points[grid.order[r]];
