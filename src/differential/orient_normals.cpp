@@ -161,9 +161,10 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
   const float stacked = kStackedNoise * std::max(0.f, noise_sigma);
   const auto edge_slot = [&](std::size_t i, std::size_t m) -> std::uint16_t {
     const std::uint32_t j = neighbourhoods.indices[i * stride + m];
-    const bool listed_by_j = neighbourhoods.distances[i * stride + m] < neighbourhoods.distances[j * stride + k - 1];
-    const bool usable = normals[i].squaredNorm() > 0 && normals[j].squaredNorm() > 0;
-    if (!usable || (i >= j && listed_by_j)) return kNoEdge;
+    // j's row is read only when i ≥ j, half the slots.
+    if (i >= j && neighbourhoods.distances[i * stride + m] < neighbourhoods.distances[j * stride + k - 1])
+      return kNoEdge;
+    if (!(normals[i].squaredNorm() > 0 && normals[j].squaredNorm() > 0)) return kNoEdge;
     const float c = agreement(points[i], normals[i], points[j], normals[j], options.criterion, stacked);
     return static_cast<std::uint16_t>(level(c) | (c < 0 ? kDisagree : 0));
   };
