@@ -77,8 +77,9 @@ class SignedUnionFind {
 /// back to n_p·n_q.
 /// `stacked`: the offset along the normals within which a pair stacked along them is taken for one sheet
 /// (orient_normals' noise_sigma).
-float agreement(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq, OrientCriterion criterion,
-                float stacked = 0) {
+/// Inlined by force: the compiler kept it a call, and the orientation makes one per edge (9M at 1M points).
+[[gnu::always_inline]] inline float agreement(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq,
+                                              OrientCriterion criterion, float stacked = 0) {
   const Vec3f e = q - p;
   const float length2 = e.squaredNorm();
   if (criterion == OrientCriterion::Parallel || !(length2 > 0.f)) return np.dot(nq);
