@@ -77,8 +77,9 @@ class SignedUnionFind {
 /// back to n_p·n_q.
 /// `stacked`: the offset along the normals within which a pair stacked along them is taken for one sheet
 /// (orient_normals' noise_sigma).
-float agreement(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq, OrientCriterion criterion,
-                float stacked = 0) {
+/// Inlined by force: the compiler kept it a call, and the orientation makes one per edge (9M at 1M points).
+[[gnu::always_inline]] inline float agreement(const Vec3f& p, const Vec3f& np, const Vec3f& q, const Vec3f& nq,
+                                              OrientCriterion criterion, float stacked = 0) {
   const Vec3f e = q - p;
   const float length2 = e.squaredNorm();
   if (criterion == OrientCriterion::Parallel || !(length2 > 0.f)) return np.dot(nq);
@@ -161,9 +162,10 @@ OrientResult orient_normals(const std::vector<Vec3f>& points, std::vector<Vec3f>
   const float stacked = kStackedNoise * std::max(0.f, noise_sigma);
   const auto edge_slot = [&](std::size_t i, std::size_t m) -> std::uint16_t {
     const std::uint32_t j = neighbourhoods.indices[i * stride + m];
-    const bool listed_by_j = neighbourhoods.distances[i * stride + m] < neighbourhoods.distances[j * stride + k - 1];
-    const bool usable = normals[i].squaredNorm() > 0 && normals[j].squaredNorm() > 0;
-    if (!usable || (i >= j && listed_by_j)) return kNoEdge;
+    // j's row is read only when i ≥ j, half the slots.
+    if (i >= j && neighbourhoods.distances[i * stride + m] < neighbourhoods.distances[j * stride + k - 1])
+      return kNoEdge;
+    if (!(normals[i].squaredNorm() > 0 && normals[j].squaredNorm() > 0)) return kNoEdge;
     const float c = agreement(points[i], normals[i], points[j], normals[j], options.criterion, stacked);
     return static_cast<std::uint16_t>(level(c) | (c < 0 ? kDisagree : 0));
   };

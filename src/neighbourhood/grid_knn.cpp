@@ -5,7 +5,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <array>
@@ -54,14 +53,13 @@ struct Frame {
   }
 };
 
-/// Every point's code and index, sorted (an already sorted array, a spatially reordered cloud at the finest level,
-/// costs one pass).
-std::vector<MortonKeyed> sorted_codes(const std::vector<Vec3f>& points, const Frame& frame) {
+/// Every point's finest code and index, sorted (a cloud in spatial order, the pipeline's, costs one pass).
+std::vector<MortonKeyed> sorted_codes(const std::vector<Vec3f>& points, const FinestCells& cells) {
   std::vector<MortonKeyed> keyed(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const auto& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) keyed[i] = {frame.code_of(points[i]), std::uint32_t(i)};
+    for (std::size_t i = r.begin(); i < r.end(); ++i) keyed[i] = {cells.code_of(points[i]), std::uint32_t(i)};
   });
-  if (!std::is_sorted(keyed.begin(), keyed.end())) tbb::parallel_sort(keyed.begin(), keyed.end());
+  if (!std::is_sorted(keyed.begin(), keyed.end())) sort_keyed(keyed);
   return keyed;
 }
 
@@ -70,9 +68,8 @@ std::vector<MortonKeyed> sorted_codes(const std::vector<Vec3f>& points, const Fr
 /// unless their codes differ above bit 3j), then interpolated between the two levels around the target with the
 /// local growth rate (4 per level on a surface, 8 in a volume).
 double cell_edge(const std::vector<Vec3f>& points, const Box3f& box, double target) {
-  const double side = box.size().maxCoeff();
-  const Frame finest{box.min.cast<double>(), side / kMortonMax};
-  const std::vector<MortonKeyed> keyed = sorted_codes(points, finest);
+  const double finest = double(box.size().maxCoeff()) / kMortonMax;
+  const std::vector<MortonKeyed> keyed = sorted_codes(points, FinestCells(box));
   std::array<double, kMortonBits + 2> above{};  // above[j]: neighbours in different cells of level j
   for (std::size_t i = 1; i < keyed.size(); ++i) {
     const std::uint64_t x = keyed[i].code ^ keyed[i - 1].code;
@@ -83,39 +80,38 @@ double cell_edge(const std::vector<Vec3f>& points, const Box3f& box, double targ
   const auto occupancy = [&](int j) { return double(points.size()) / (1.0 + above[static_cast<std::size_t>(j)]); };
   int j = 0;
   while (j <= kMortonBits && occupancy(j) < target) ++j;
-  if (j == 0) return finest.edge;
+  if (j == 0) return finest;
   const double growth = std::clamp(std::log2(occupancy(j) / occupancy(j - 1)), 1.0, 3.0);
-  return finest.edge * std::ldexp(1.0, j) * std::pow(target / occupancy(j), 1.0 / growth);
+  return finest * std::ldexp(1.0, j) * std::pow(target / occupancy(j), 1.0 / growth);
 }
 
-/// The occupied cells: their codes, their runs of `order`, and an open-addressing table from code to cell.
+/// The occupied cells in order of first appearance (a cloud in spatial order visits them about in Morton order),
+/// their runs of `order` and an open-addressing table from code to cell: grouped by counting, with no sort.
 struct Grid {
   Frame frame;
-  std::vector<std::uint32_t> order;  ///< point indices by (code, index)
+  std::vector<std::uint32_t> order;  ///< point indices by cell, increasing within a cell
   std::vector<std::uint64_t> codes;  ///< per cell
   std::vector<std::uint32_t> start;  ///< per cell and one more: its run in `order`
   std::vector<std::uint32_t> slots;  ///< cell + 1, 0 = empty
   int shift = 64;
 
-  Grid(const std::vector<Vec3f>& points, const Frame& f) : frame(f) {
-    const std::vector<MortonKeyed> keyed = sorted_codes(points, f);
-    order.resize(keyed.size());
-    for (std::size_t r = 0; r < keyed.size(); ++r) {
-      order[r] = keyed[r].index;
-      if (r == 0 || keyed[r].code != keyed[r - 1].code) {
-        codes.push_back(keyed[r].code);
-        start.push_back(static_cast<std::uint32_t>(r));
-      }
+  Grid(const std::vector<Vec3f>& points, const Frame& f) : frame(f), start{0} {
+    const std::size_t n = points.size();
+    std::vector<std::uint64_t> point_code(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const auto& r) {
+      for (std::size_t i = r.begin(); i < r.end(); ++i) point_code[i] = frame.code_of(points[i]);
+    });
+    resize_table(static_cast<int>(std::bit_width(n / 8 + 1)) + 1);
+    std::vector<std::uint32_t> cell(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      // Consecutive points of a cloud in spatial order mostly share a cell: the table is asked once per run.
+      cell[i] = i > 0 && point_code[i] == point_code[i - 1] ? cell[i - 1] : insert(point_code[i]);
+      ++start[cell[i] + 1];
     }
-    start.push_back(static_cast<std::uint32_t>(order.size()));
-    const int bits = static_cast<int>(std::bit_width(2 * codes.size()));
-    shift = 64 - bits;
-    slots.assign(std::size_t{1} << bits, 0);
-    for (std::uint32_t cell = 0; cell < codes.size(); ++cell) {
-      std::size_t s = slot(codes[cell]);
-      while (slots[s] != 0) s = (s + 1) & (slots.size() - 1);
-      slots[s] = cell + 1;
-    }
+    for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+    order.resize(n);
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::uint32_t i = 0; i < n; ++i) order[next[cell[i]]++] = i;
   }
   std::size_t slot(std::uint64_t code) const { return (code * 0x9E3779B97F4A7C15ULL) >> shift; }
   /// The cell with this code, or -1.
@@ -126,6 +122,32 @@ struct Grid {
     }
   }
   std::size_t cells() const { return codes.size(); }
+  /// Starts loading the table slot of `code` (a hint: no effect on the result).
+  void prefetch(std::uint64_t code) const { __builtin_prefetch(&slots[slot(code)]); }
+
+ private:
+  /// The cell of `code`, added (with a zero count in start) if new; the table doubles at half full.
+  std::uint32_t insert(std::uint64_t code) {
+    std::size_t s = slot(code);
+    for (; slots[s] != 0; s = (s + 1) & (slots.size() - 1))
+      if (codes[slots[s] - 1] == code) return slots[s] - 1;
+    const auto cell = static_cast<std::uint32_t>(codes.size());
+    codes.push_back(code);
+    start.push_back(0);
+    slots[s] = cell + 1;
+    if (2 * codes.size() > slots.size()) resize_table(static_cast<int>(std::bit_width(slots.size())));
+    return cell;
+  }
+  /// A table of 2^bits slots holding the cells so far.
+  void resize_table(int bits) {
+    shift = 64 - bits;
+    slots.assign(std::size_t{1} << bits, 0);
+    for (std::uint32_t cell = 0; cell < codes.size(); ++cell) {
+      std::size_t s = slot(codes[cell]);
+      while (slots[s] != 0) s = (s + 1) & (slots.size() - 1);
+      slots[s] = cell + 1;
+    }
+  }
 };
 
 /// As nanoflann's L2_Simple_Adaptor, so that distances and ties come out the same: query minus point, summed over
@@ -136,6 +158,10 @@ inline float squared(float dx, float dy, float dz) {
   d += dz * dz;
   return d;
 }
+
+/// A row's first bound is the k-th distance of the point before times this: wide enough for all but about 1 in 10
+/// rows (1M bunny), with about 1.5 k candidates within it instead of 2.75 k under the triangle bound.
+constexpr float kGuess = 1.15f;
 
 /// The 27 cell offsets, nearest first (the cell itself, faces, edges, corners): near candidates come first and fill
 /// the k best early, so that later ones mostly fail the first compare.
@@ -163,10 +189,17 @@ struct Candidates {
     const std::uint64_t code = grid.codes[cell];
     centre = {compact_bits(code), compact_bits(code >> 1), compact_bits(code >> 2)};
     const Cell& c = centre;
+    // The codes around first, their table slots fetched together: one at a time, each lookup waits on a cache miss.
+    std::array<std::uint64_t, 27> around;
+    std::size_t count = 0;
     for (const auto& [dx, dy, dz] : kAround) {
       const std::int64_t cx = std::int64_t(c[0]) + dx, cy = std::int64_t(c[1]) + dy, cz = std::int64_t(c[2]) + dz;
       if (std::min({cx, cy, cz}) < 0 || std::max({cx, cy, cz}) > kMortonMax) continue;
-      const std::int64_t other = grid.find(morton(std::uint32_t(cx), std::uint32_t(cy), std::uint32_t(cz)));
+      around[count] = morton(std::uint32_t(cx), std::uint32_t(cy), std::uint32_t(cz));
+      grid.prefetch(around[count++]);
+    }
+    for (std::size_t a = 0; a < count; ++a) {
+      const std::int64_t other = grid.find(around[a]);
       if (other < 0) continue;
       for (std::uint32_t r = grid.start[std::size_t(other)]; r < grid.start[std::size_t(other) + 1]; ++r) {
         const Vec3f& p = points[grid.order[r]];
@@ -176,17 +209,22 @@ struct Candidates {
     }
   }
 
-  /// The k nearest candidates to point i (self excluded) into keys[0, k), sorted; false if there are fewer than k.
-  /// `bound`: a squared distance within which at least k candidates other than i lie (infinity if unknown). Distances
-  /// come first, in a loop the compiler vectorises; only the candidates within the bound (about 1.5 k of a cell's
-  /// hundred, with the previous point's bound) then compete, by insertion.
-  bool nearest(const Vec3f& q, std::uint32_t i, std::size_t k, float bound) {
+  /// The squared distances from q to every candidate, in a loop the compiler vectorises.
+  void measure(const Vec3f& q) {
     const std::size_t count = index.size();
     d2.resize(count);
     for (std::size_t c = 0; c < count; ++c) {
       const float dx = q.x() - x[c], dy = q.y() - y[c], dz = q.z() - z[c];
       d2[c] = squared(dx, dy, dz);
     }
+  }
+
+  /// The k nearest candidates to point i (self excluded) by measure()'s distances into keys[0, k), sorted; false if
+  /// fewer than k lie within `bound` (a squared distance, infinity if unknown). Then no candidate beyond the bound can
+  /// be among the k nearest, whatever the bound was: only those within it (a few more than k with a close guess)
+  /// compete, by insertion.
+  bool nearest(std::uint32_t i, std::size_t k, float bound) {
+    const std::size_t count = index.size();
     keys.resize(count + 1);
     std::size_t within = 0;
     for (std::size_t c = 0; c < count; ++c) {
@@ -232,18 +270,23 @@ std::vector<std::uint32_t> grid_knn(const std::vector<Vec3f>& points, std::size_
         grid.cells(), progress, "neighbourhoods",
         [&](std::size_t begin, std::size_t end) {
           thread_local Candidates cand;
+          // Bounds for a row from the point before (in this cell or the one before): its k-th distance a little
+          // widened, a guess that holds for most points, then that distance plus the step between the two, within
+          // which the point before and its k nearest lie (triangle inequality), then none.
+          float reach = INFINITY;
+          Vec3f previous = Vec3f::Zero();
           for (std::size_t cell = begin; cell < end; ++cell) {
             cand.gather(grid, points, cell);
             if (cand.index.size() > most) continue;
-            // The previous point's k-th distance plus the step to this one bounds this one's (triangle inequality:
-            // its k nearest, with the previous point itself in place of this one, are all that close).
-            float reach = INFINITY;
-            Vec3f previous = Vec3f::Zero();
             for (std::uint32_t r = grid.start[cell]; r < grid.start[cell + 1]; ++r) {
               const std::uint32_t i = grid.order[r];
+              const float guess = reach * kGuess;
               const float bound = (reach + (points[i] - previous).norm()) * (1 + 1e-5f);
               reach = INFINITY;
-              if (!cand.nearest(points[i], i, k, bound * bound) && !cand.nearest(points[i], i, k, INFINITY)) continue;
+              cand.measure(points[i]);
+              if (!cand.nearest(i, k, guess * guess) && !(bound > guess && cand.nearest(i, k, bound * bound)) &&
+                  !cand.nearest(i, k, INFINITY))
+                continue;
               const float kth = std::sqrt(key_value(cand.keys[k - 1]));
               reach = kth;
               previous = points[i];
