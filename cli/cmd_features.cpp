@@ -191,9 +191,11 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
 
   std::size_t ridges = 0;
   for (const Polyline& l : result.lines) ridges += l.kind == LineKind::Ridge;
-  std::printf("%zu points (%zu outliers left out), h = %g: %zu ridge points, %zu valley points; %zu ridge lines, "
-              "%zu valley lines (%zu joins, %zu short lines dropped); %zu border points, %zu boundary lines\n",
-              cloud.size(), removed, static_cast<double>(surface.spacing), result.detection.ridge_points,
+  std::printf("%zu points (%zu outliers left out, %zu thinned on scan lines), h = %g: %zu ridge points, %zu valley "
+              "points; %zu ridge lines, %zu valley lines (%zu joins, %zu short lines dropped); %zu border points, %zu "
+              "boundary lines\n",
+              cloud.size(), removed, surface.thinned.size(), static_cast<double>(surface.spacing),
+              result.detection.ridge_points,
               result.detection.valley_points, ridges, result.lines.size() - ridges, result.joins, result.dropped,
               boundary.border_points, boundary.lines.size());
   std::printf("detection %.3f s, tracing %.3f s, joining %.3f s\n", result.timings.detection, result.timings.tracing,

@@ -215,7 +215,8 @@ void bind_results(py::module_& m) {
       .def_property_readonly(
           "points",
           [](const PreparedCloud& c) { return world_array(c.prepared->cloud.positions, c.prepared->cloud.origin); },
-          "(N, 3) float64: the points analysed (outliers left out, denoised), world coordinates")
+          "(N, 3) float64: the points analysed (outliers and points thinned on scan lines left out, denoised), "
+          "world coordinates")
       .def_property_readonly(
           "normals", [](const PreparedCloud& c) { return float_rows(c.prepared->cloud.normals); },
           "(N, 3) float32: their oriented normals")
