@@ -17,10 +17,10 @@
 //
 // Each (model, condition) runs in its own process. "total" = prepare + the first view (no reading, no writing).
 
+#include <array>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <numeric>
 #include <random>
 #include <nlohmann/json.hpp>
@@ -119,19 +119,29 @@ PointCloud scan_line_samples(const Mesh& mesh, std::size_t lines, std::size_t n)
   const float gap = (high - low) / static_cast<float>(lines);
   std::vector<std::pair<Vec3f, Vec3f>> cuts;
   double length = 0;
-  for (const auto& f : mesh.faces)
-    for (std::size_t l = 0; l < lines; ++l) {
+  for (const auto& f : mesh.faces) {
+    float bottom = mesh.vertices[f[0]].y(), top = bottom;
+    for (const std::uint32_t v : f) {
+      bottom = std::min(bottom, mesh.vertices[v].y());
+      top = std::max(top, mesh.vertices[v].y());
+    }
+    // Only the planes within the face's span can cut it (one below and above, for rounding).
+    const auto first = static_cast<std::size_t>(std::max(0.f, (bottom - low) / gap - 1.5f));
+    const std::size_t last = std::min(lines, static_cast<std::size_t>(std::max(0.f, (top - low) / gap + 1.5f)));
+    for (std::size_t l = first; l < last; ++l) {
       const float y = low + (static_cast<float>(l) + 0.5f) * gap;
-      std::vector<Vec3f> ends;
+      std::array<Vec3f, 3> ends;
+      std::size_t count = 0;
       for (int e = 0; e < 3; ++e) {
         const Vec3f& a = mesh.vertices[f[static_cast<std::size_t>(e)]];
         const Vec3f& b = mesh.vertices[f[static_cast<std::size_t>((e + 1) % 3)]];
-        if ((a.y() < y) != (b.y() < y)) ends.push_back(a + (b - a) * ((y - a.y()) / (b.y() - a.y())));
+        if ((a.y() < y) != (b.y() < y)) ends[count++] = a + (b - a) * ((y - a.y()) / (b.y() - a.y()));
       }
-      if (ends.size() != 2) continue;
+      if (count != 2) continue;
       cuts.emplace_back(ends[0], ends[1]);
       length += static_cast<double>((ends[1] - ends[0]).norm());
     }
+  }
   const double step = length / static_cast<double>(n);
   std::mt19937 rng(2024);
   std::uniform_real_distribution<double> phase(0, 1);

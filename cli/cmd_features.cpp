@@ -45,21 +45,21 @@ std::vector<T> in_file_order(const std::vector<T>& values, const std::vector<std
 
 /// `cloud` followed by points analyse_surface left out (normals zero where they have none): with the outliers and the
 /// points thinned on scan lines, every point of the file, so that `label` can mark them instead of dropping them.
-PointCloud with_outliers(const PointCloud& cloud, const PointCloud& outliers) {
+PointCloud with_left_out(const PointCloud& cloud, const PointCloud& left_out) {
   PointCloud all = cloud;
-  if (outliers.empty()) return all;
-  all.positions.insert(all.positions.end(), outliers.positions.begin(), outliers.positions.end());
+  if (left_out.empty()) return all;
+  all.positions.insert(all.positions.end(), left_out.positions.begin(), left_out.positions.end());
   if (all.has_normals() || cloud.has_normals()) {
-    if (outliers.has_normals())
-      all.normals.insert(all.normals.end(), outliers.normals.begin(), outliers.normals.end());
+    if (left_out.has_normals())
+      all.normals.insert(all.normals.end(), left_out.normals.begin(), left_out.normals.end());
     else
       all.normals.resize(all.positions.size(), Vec3f::Zero());
   }
-  if (cloud.has_colors() && outliers.has_colors())
-    all.colors.insert(all.colors.end(), outliers.colors.begin(), outliers.colors.end());
+  if (cloud.has_colors() && left_out.has_colors())
+    all.colors.insert(all.colors.end(), left_out.colors.begin(), left_out.colors.end());
   else
     all.colors.clear();
-  all.source_index.insert(all.source_index.end(), outliers.source_index.begin(), outliers.source_index.end());
+  all.source_index.insert(all.source_index.end(), left_out.source_index.begin(), left_out.source_index.end());
   return all;
 }
 
@@ -157,7 +157,7 @@ void run_features(const FeaturesArgs& args, const GlobalOptions& global) {
 
   // Written in the file's point order, so the scalar fields line up with the input cloud; outliers get label 3, the
   // points of a drawn border 4 (a ridge at a scan's edge is the edge), the points thinned on scan lines 5.
-  PointCloud out = with_outliers(with_outliers(cloud, surface.outliers), surface.thinned);
+  PointCloud out = with_left_out(with_left_out(cloud, surface.outliers), surface.thinned);
   const std::size_t removed = surface.outliers.size();
   std::vector<float> k1 = surface.curvature.k1, k2 = surface.curvature.k2, ki = result.detection.feature_curvature;
   std::vector<std::uint8_t> labels(cloud.size());
