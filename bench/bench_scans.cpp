@@ -4,7 +4,9 @@
 // tests/support/mesh_ground_truth.h); boundary strokes are scored with the contours, as the truth holds the mesh's
 // border edges. "vertices" draws the mesh's own vertices (a sparse, often uneven cloud). A model is a shared mesh's
 // name or a path to any mesh (held-out models: scripts/heldout_meshes.sh). Speed and quality read together: seconds
-// of prepare() and of a view, peak RSS.
+// of prepare() and of a view, peak RSS. "outline R" is the part of the mesh's filled silhouette's edge within the
+// tolerance of a drawn contour or border: whether the outline closes, scored against truth that does not depend on
+// how finely the mesh is faceted (a coarse mesh's contour edges zig-zag across its grazing faces).
 //
 //   bench_scans [-n N] [--models a,b|path.off,...] [--conditions clean,0.1%,...] [--views K] [--boundary on|off]
 //               [--fusion on|off] [--smooth on|off] [--min-stroke-length PX] [--score all|drawn]
@@ -203,6 +205,7 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
     const std::vector<Vec2f> drawn_contours = drawn_samples(d, LineKind::Contour, drawn_only, true);
     const auto lines = [&](LineKind kind) { return drawn_samples(d, kind, drawn_only, false); };
     per_view.push_back({{"contour", score(drawn_contours, contours)},
+                        {"outline", score(drawn_contours, test::mesh_outline(mesh, cam))},
                         {"ridge", score(lines(LineKind::Ridge), sharp.convex.visible)},
                         {"valley", score(lines(LineKind::Valley), sharp.concave.visible)}});
     if (!overlay_dir.empty())
@@ -276,7 +279,7 @@ int run(int argc, char** argv) {
   std::cout << "load average before: " << load_average() << "; " << grouped(n) << " samples, " << views
             << " views, scores min–mean over views at " << kTolerancePx << " px\n";
   Table table({"model", "condition", "kept", "outliers left", "prepare s", "view s", "total s", "contour P",
-               "contour R", "ridge P / R", "valley P / R", "peak RSS"});
+               "contour R", "outline R", "ridge P / R", "valley P / R", "peak RSS"});
   for (const std::string& model : models)
     for (const Condition& c : conditions) {
       const nlohmann::json r =
@@ -288,7 +291,7 @@ int run(int argc, char** argv) {
       table.add_row({std::filesystem::path(model).stem().string(), c.name, grouped(r["kept"].get<std::size_t>()),
                      grouped(r["kept_outliers"].get<std::size_t>()) + "/" + grouped(r["outliers"].get<std::size_t>()),
                      fixed(r["prepare"].get<double>(), 3), fixed(r["view"].get<double>(), 3), fixed(total, 3),
-                     range_cell(v, "contour", 0), range_cell(v, "contour", 1),
+                     range_cell(v, "contour", 0), range_cell(v, "contour", 1), range_cell(v, "outline", 1),
                      range_cell(v, "ridge", 0) + " / " + range_cell(v, "ridge", 1),
                      range_cell(v, "valley", 0) + " / " + range_cell(v, "valley", 1),
                      mebibytes(r["peak"].get<std::size_t>())});

@@ -86,6 +86,11 @@ void add_contours(Builder& b) {
             .help = "Outline tracing: outermost (no zig-zags) or direction-guided (the paper's)"});
   b.add(PCSKETCH_OPTION(view.contours.trace_radius_factor),
         {.range = positive(1e3), .unit = "projected spacings", .help = "Radius of outline tracing"});
+  b.add(PCSKETCH_OPTION(view.contours.bridge_radius_factor),
+        {.flag = "--bridge-radius",
+         .range = non_negative(1e3),
+         .unit = "projected spacings",
+         .help = "Radius of the disc rolled along the outermost points to close the outline's gaps (0: off)"});
   b.add(PCSKETCH_OPTION(view.contours.z_max_factor),
         {.flag = "--z-max",
          .range = positive(1e3),

@@ -14,6 +14,7 @@
 #include "core/nth_value.h"
 #include "core/progress.h"
 #include "contour_walk.h"
+#include "outline_bridges.h"
 #include "outline_points.h"
 #include "point_grid.h"
 
@@ -376,6 +377,7 @@ ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec
   pcsketch::detail::ProgressSteps steps(options.progress, "contour connection",
                                         points.boundary.size() + (options.interior ? points.rim.size() : 0));
   lines.outline = trace_outline(points, positions, options, steps);
+  detail::bridge_outline(points, positions, lines.outline, options);
   if (options.interior)
     lines.interior = trace_interior(points, lines.outline, spacing, options,
                                     denoised ? options.denoised_min_length_factor : options.min_length_factor, steps);

@@ -122,5 +122,40 @@ TEST(SparseCloud, CoarseMeshVerticesKeepTheirContours) {
   }
 }
 
+/// Contour precision and outline recall (3 px at 1024 px, against the mesh's filled silhouette's edge) of 5,000
+/// samples of a fixture mesh, from one direction, with the outline's bridges of the given radius factor.
+std::pair<double, double> outline_scores(const Mesh& mesh, const Vec3d& direction, float bridge_radius_factor) {
+  PointCloud cloud = io::sample_mesh(mesh, {.n = 5000, .seed = 7});
+  cloud.normals.clear();
+  DrawOptions options;
+  options.camera.direction = direction;
+  options.view.contours.bridge_radius_factor = bridge_radius_factor;
+  const Prepared prepared = prepare(std::move(cloud), options);
+  const DrawResult result = draw_view(prepared, options.camera, options);
+  const view::Camera camera = view::make_camera(prepared.cloud.positions, prepared.cloud.origin, options.camera);
+  const std::vector<Vec2f> drawn = test::sample_visible_strokes(result.drawing, LineKind::Contour);
+  return {test::match_lines(drawn, test::mesh_contours(mesh, camera).visible, 3.f).precision,
+          test::match_lines(drawn, test::mesh_outline(mesh, camera), 3.f).recall};
+}
+
+// 5,000 samples (about 10 px apart at 1024 px): the gap test passes only every few rim points there, and the traced
+// outline broke into pieces. The rolled disc bridges them. Measured over these 9 views, mean outline recall
+// 0.755 → 0.780 (it rose in every view), mean contour precision 0.801 → 0.788 (a bridge cuts across a notch
+// narrower than the disc).
+TEST(SparseCloud, OutlineGapsAreBridged) {
+  double recall_on = 0, recall_off = 0, precision_on = 0, precision_off = 0;
+  for (const char* file : {"elephant.off", "camel.off", "triceratops.off"}) {
+    const Mesh mesh = io::read_mesh(std::string(PCSKETCH_FIXTURES) + "/meshes/" + file);
+    for (const Vec3d& direction : {Vec3d(0, 0, 1), Vec3d(1, 0.15, 0.6), Vec3d(1, 1, 1)}) {
+      const auto [p_on, r_on] = outline_scores(mesh, direction, view::ContourOptions{}.bridge_radius_factor);
+      const auto [p_off, r_off] = outline_scores(mesh, direction, 0.f);
+      EXPECT_GE(r_on, r_off) << file << " " << direction.transpose();
+      recall_on += r_on / 9, recall_off += r_off / 9, precision_on += p_on / 9, precision_off += p_off / 9;
+    }
+  }
+  EXPECT_GE(recall_on, recall_off + 0.02);
+  EXPECT_GE(precision_on, precision_off - 0.03);
+}
+
 }  // namespace
 }  // namespace pcsketch

@@ -173,6 +173,18 @@ std::vector<std::uint8_t> mesh_silhouette(const Mesh& mesh, const view::Camera& 
   return covered;
 }
 
+std::vector<Vec2f> mesh_outline(const Mesh& mesh, const view::Camera& camera) {
+  const std::vector<std::uint8_t> covered = mesh_silhouette(mesh, camera);
+  const int w = camera.width, h = camera.height;
+  const auto inside = [&](int x, int y) { return x >= 0 && y >= 0 && x < w && y < h && covered[y * w + x] != 0; };
+  std::vector<Vec2f> out;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (inside(x, y) && !(inside(x - 1, y) && inside(x + 1, y) && inside(x, y - 1) && inside(x, y + 1)))
+        out.emplace_back(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+  return out;
+}
+
 MeshContours mesh_contours(const Mesh& mesh, const view::Camera& camera, const MeshContourOptions& options) {
   // Facing of every face: front when its normal points toward the viewer.
   std::vector<char> front(mesh.faces.size());

@@ -81,6 +81,10 @@ LineMatch match_lines(const std::vector<Vec2f>& drawn, const std::vector<Vec2f>&
 /// #W·#H flags, row-major: the pixels whose centre the mesh covers as seen by `camera` (its filled silhouette).
 std::vector<std::uint8_t> mesh_silhouette(const Mesh& mesh, const view::Camera& camera);
 
+/// Image positions (pixel centres) of the covered pixels of mesh_silhouette() with an uncovered 4-neighbour or on the
+/// image's edge: the mesh's outline, which on a coarse mesh is steadier truth than its faceted contour edges.
+std::vector<Vec2f> mesh_outline(const Mesh& mesh, const view::Camera& camera);
+
 /// Samples of a 2D polyline every `step_px` pixels (vertices included).
 std::vector<Vec2f> sample_polyline(const std::vector<Vec2f>& points, bool closed, float step_px);
 

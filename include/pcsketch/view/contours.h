@@ -52,6 +52,11 @@ struct ContourOptions {
   OutlineConnection connection = OutlineConnection::Outermost;
   /// Radius within which the next point of a line is searched, in units of h_px (paper: the neighbourhood of k).
   float trace_radius_factor = 3.0f;
+  /// Radius of the disc that closes the outline's gaps, in units of h_px (0: off). From each open end of the traced
+  /// outline a disc of this radius rolls along the outermost projected points until it meets the outline again
+  /// (2D ball pivoting), so gaps up to twice the radius between outermost points are bridged. Sparse clouds need it:
+  /// there the gap test passes only every few rim points, further apart than the trace radius (docs/views.md).
+  float bridge_radius_factor = 2.5f;
   /// Paper's z_max: largest distance of the next point from the direction line, in units of h_px (DirectionGuided).
   float z_max_factor = 1.0f;
   /// Largest turn between consecutive steps, degrees; rejects backtracking (the spikes of interference points).
