@@ -63,7 +63,8 @@ const Condition kConditions[] = {{"clean", 0, 0, 1},
                                  {"one side 0.1%", 0.001, 0, 1, true},
                                  {"one side + 1% outl.", 0, 0.01, 1, true},
                                  {"vertices", 0, 0, 1, false, true},
-                                 {"scan lines", 0, 0, 1, false, false, 60}};
+                                 {"scan lines", 0, 0, 1, false, false, 60},
+                                 {"scan lines 0.1%", 0.001, 0, 1, false, false, 60}};
 
 /// Directions of sight: the paper's +z and four oblique ones, none parallel to the default up (+y).
 const Vec3d kViews[] = {{0, 0, 1}, {1, 0.15, 0.6}, {1, 1, 1}, {-1, 0.3, -0.5}, {0.3, -0.6, 1}};
@@ -114,8 +115,9 @@ void write_overlay(const std::string& file, const view::Camera& camera, const Po
 }
 
 /// A profile scanner's points: the mesh cut by `lines` planes y = const evenly spread over its height, the cuts
-/// sampled at one spacing along them so that about `n` points are made (each segment from a random phase).
-PointCloud scan_line_samples(const Mesh& mesh, std::size_t lines, std::size_t n) {
+/// sampled at one spacing along them so that about `n` points are made (each segment from a random phase), with
+/// Gaussian noise of `noise` × the diagonal on each coordinate.
+PointCloud scan_line_samples(const Mesh& mesh, std::size_t lines, std::size_t n, double noise) {
   float low = mesh.vertices.front().y(), high = low;
   for (const Vec3f& v : mesh.vertices) low = std::min(low, v.y()), high = std::max(high, v.y());
   const float gap = (high - low) / static_cast<float>(lines);
@@ -147,12 +149,17 @@ PointCloud scan_line_samples(const Mesh& mesh, std::size_t lines, std::size_t n)
   const double step = length / static_cast<double>(n);
   std::mt19937 rng(2024);
   std::uniform_real_distribution<double> phase(0, 1);
+  Vec3f lo = mesh.vertices.front(), hi = lo;
+  for (const Vec3f& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  std::normal_distribution<float> offset(0.f, static_cast<float>(noise) * (hi - lo).norm());
   PointCloud cloud;
   cloud.origin = mesh.origin;
   for (const auto& cut : cuts) {
     const double l = static_cast<double>((cut.second - cut.first).norm());
-    for (double t = phase(rng) * step; t < l; t += step)
-      cloud.positions.push_back(cut.first + (cut.second - cut.first) * static_cast<float>(t / l));
+    for (double t = phase(rng) * step; t < l; t += step) {
+      const Vec3f jitter = noise > 0 ? Vec3f(offset(rng), offset(rng), offset(rng)) : Vec3f::Zero();
+      cloud.positions.push_back(cut.first + (cut.second - cut.first) * static_cast<float>(t / l) + jitter);
+    }
   }
   cloud.source_index.resize(cloud.size());
   std::iota(cloud.source_index.begin(), cloud.source_index.end(), 0u);
@@ -166,7 +173,7 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
   const std::string path = model.find('/') == std::string::npos ? shared_data(model + ".off") : model;
   const Mesh mesh = io::read_mesh(path);
   PointCloud cloud = c.vertices     ? io::read_point_cloud(path).cloud
-                     : c.scan_lines ? scan_line_samples(mesh, c.scan_lines, n)
+                     : c.scan_lines ? scan_line_samples(mesh, c.scan_lines, n, c.noise)
                                     : io::sample_mesh(mesh, {.n = n,
                                             .noise_sigma_factor = c.noise,
                                             .seed = 2024,
