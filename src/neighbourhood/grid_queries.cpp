@@ -1,7 +1,9 @@
 // The kd-tree's single-point queries answered from the neighbourhoods' grid where it proves them: a clean cloud then
 // never builds the tree (its serial build was 4% of a 1M-point draw).
 
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "grid_cells.h"
@@ -49,14 +51,31 @@ bool GridKnn::within(const Vec3f& q, float radius, std::vector<std::uint32_t>& i
   constexpr int kMostReach = 6;
   if (!(span < kMostReach)) return false;
   const int reach = static_cast<int>(std::ceil(span * (1 + 1e-6) + 1e-9));
+  if (reach > kMostReach) return false;
   const Cell centre = frame.cell_of(q);
+  // Squared distance from q to the slab of the cells `d` away along each axis, in cells (0 for its own): a cell
+  // whose box lies beyond the radius is skipped. q may lie outside its (clamped) cell: then 0 where it would be
+  // negative, which only keeps more cells.
+  std::array<std::array<double, 2 * kMostReach + 1>, 3> slab{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double t = (double(q[static_cast<Eigen::Index>(a)]) - frame.lo[static_cast<Eigen::Index>(a)]) / frame.edge -
+                     double(centre[a]);
+    for (int d = -reach; d <= reach; ++d) {
+      const double gap = std::max(0.0, d > 0 ? d - t : d < 0 ? t - (d + 1) : 0.0);
+      slab[a][static_cast<std::size_t>(d + reach)] = gap * gap;
+    }
+  }
+  const double limit = span * span * (1 + 1e-5) + 1e-9;
+  // Squared distances surely inside and surely outside the radius (none where its square is subnormal).
+  const float r2 = radius * radius;
+  const bool squares = r2 >= std::numeric_limits<float>::min();
+  const float near = squares ? r2 * (1 - 1e-5f) : 0.f, far = squares ? r2 * (1 + 1e-5f) : INFINITY;
   for (int dz = -reach; dz <= reach; ++dz)
     for (int dy = -reach; dy <= reach; ++dy)
       for (int dx = -reach; dx <= reach; ++dx) {
-        // A cell |d| cells away along an axis is at least |d| − 1 cells from q there: cells surely beyond, skipped.
-        const auto gap = [](int d) { return std::max(0, std::abs(d) - 1); };
-        const double cells_away = std::sqrt(double(gap(dx) * gap(dx) + gap(dy) * gap(dy) + gap(dz) * gap(dz)));
-        if (cells_away > span * (1 + 1e-6)) continue;
+        if (slab[0][std::size_t(dx + reach)] + slab[1][std::size_t(dy + reach)] + slab[2][std::size_t(dz + reach)] >
+            limit)
+          continue;
         const std::int64_t cx = std::int64_t(centre[0]) + dx, cy = std::int64_t(centre[1]) + dy,
                            cz = std::int64_t(centre[2]) + dz;
         if (std::min({cx, cy, cz}) < 0 || std::max({cx, cy, cz}) > kMortonMax) continue;
@@ -65,8 +84,11 @@ bool GridKnn::within(const Vec3f& q, float radius, std::vector<std::uint32_t>& i
         for (std::uint32_t r = g.grid->start[std::size_t(cell)]; r < g.grid->start[std::size_t(cell) + 1]; ++r) {
           const std::uint32_t j = g.grid->order[r];
           const Vec3f& p = g.points[j];
-          // As the tree's inclusive test: the root of nanoflann's squared distance against the radius.
-          if (std::sqrt(squared(q.x() - p.x(), q.y() - p.y(), q.z() - p.z())) <= radius) indices.push_back(j);
+          // As the tree's inclusive test: the root of nanoflann's squared distance against the radius, taken only
+          // near it (the squares' rounding is 1e-7).
+          const float d2 = squared(q.x() - p.x(), q.y() - p.y(), q.z() - p.z());
+          if (d2 > far) continue;
+          if (d2 < near || std::sqrt(d2) <= radius) indices.push_back(j);
         }
       }
   return true;
