@@ -1,6 +1,7 @@
 #include "pcsketch/differential/curvature.h"
 
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -254,7 +255,17 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
       result.noise_sigma = sampled;
     } else {
       if (shared >= kInnerFit + 4) inner_residual.resize((n + stride - 1) / stride);
-      run_shared(shared);
+      // Where the sample already calls for the wide refit, its tree (serial) is built beside the first pass.
+      tbb::task_group build;
+      if (given_tree && adapt && 4 * wanted_for(sampled) > 5.0 * static_cast<double>(shared))
+        build.run([&] { given_tree->build(); });
+      try {
+        run_shared(shared);
+      } catch (...) {
+        build.wait();
+        throw;
+      }
+      build.wait();
       result.noise_sigma = static_cast<float>(noise_estimate(residual, inner_residual, stride, shared));
     }
     if (adapt) {

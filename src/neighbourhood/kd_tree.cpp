@@ -160,6 +160,8 @@ KdTree& KdTree::operator=(KdTree&&) noexcept = default;
 
 std::size_t KdTree::size() const { return impl_->adaptor.points.size(); }
 
+void KdTree::build() const { impl_->ready(); }
+
 void KdTree::knn(const Vec3f& query, std::size_t k, std::vector<std::uint32_t>& indices,
                  std::vector<float>& distances) const {
   k = std::min(k, size());

@@ -42,6 +42,8 @@ class KdTree {
   /// queries.
   void knn_of_every_point(std::size_t k, std::uint32_t* indices, float* distances, const ProgressFn& progress) const;
   std::size_t size() const;
+  /// Builds the tree now if it is not built yet (a query would): for a caller with a core to spare before queries.
+  void build() const;
 
  private:
   /// (index, squared distance) of the points within `radius`, unsorted, in a per-thread buffer.
