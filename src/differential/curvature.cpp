@@ -1,6 +1,7 @@
 #include "pcsketch/differential/curvature.h"
 
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_group.h>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -185,6 +186,20 @@ double noise_estimate(const std::vector<double>& residual, std::vector<double>& 
   return std::sqrt(noise_share) * outer_median;
 }
 
+/// body(), with `tree` built beside it when `wanted` (the build is serial: it takes a core the body shares).
+template <class Body>
+void beside_build(const neighbourhood::KdTree* tree, bool wanted, const Body& body) {
+  tbb::task_group build;
+  if (tree && wanted) build.run([tree] { tree->build(); });
+  try {
+    body();
+  } catch (...) {
+    build.wait();
+    throw;
+  }
+  build.wait();
+}
+
 Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                    const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree* given_tree,
                    const CurvatureOptions& options) {
@@ -254,7 +269,9 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
       result.noise_sigma = sampled;
     } else {
       if (shared >= kInnerFit + 4) inner_residual.resize((n + stride - 1) / stride);
-      run_shared(shared);
+      // Where the sample already calls for the wide refit, its tree is built beside the first pass.
+      beside_build(given_tree, adapt && 4 * wanted_for(sampled) > 5.0 * static_cast<double>(shared),
+                   [&] { run_shared(shared); });
       result.noise_sigma = static_cast<float>(noise_estimate(residual, inner_residual, stride, shared));
     }
     if (adapt) {

@@ -54,7 +54,7 @@ bool normalise(std::vector<Vec3f>& normals) {
   return true;
 }
 
-/// The tree of `points` and their neighbourhoods, built together (the build overlaps the search: one wall time).
+/// The tree of `points` and their neighbourhoods (the tree builds itself only when a query needs it).
 neighbourhood::Neighbourhoods index_neighbourhoods(const std::vector<Vec3f>& points,
                                                    std::optional<neighbourhood::KdTree>& tree, SurfaceTimings& t,
                                                    const SurfaceOptions& options) {
@@ -147,7 +147,7 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
   }
 
   std::optional<neighbourhood::KdTree> tree;
-  ProgressReporter(options.progress, "neighbourhoods")(0.0);  // the tree's build is part of the stage
+  ProgressReporter(options.progress, "neighbourhoods")(0.0);  // the grid's build is part of the stage
   surface.neighbourhoods = index_neighbourhoods(cloud.positions, tree, t, options);
   thin_scan_lines(cloud, surface, tree, options);
   remove_outliers(cloud, surface, tree, options);

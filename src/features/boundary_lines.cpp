@@ -101,7 +101,7 @@ class Cone {
   /// smallest needs no order: the points come unsorted.
   float nearest(std::size_t i, const Vec3f& bisector, const neighbourhood::KdTree& tree,
                 std::vector<std::uint32_t>& found) const {
-    tree.radius_unsorted(positions_[i], factor_ * reach(i), found);
+    tree.radius_any_order(positions_[i], factor_ * reach(i), found);
     float best = kNone;
     for (const std::uint32_t q : found) best = std::min(best, distance_inside(i, bisector, q));
     return best;

@@ -1,11 +1,16 @@
 #include "pcsketch/neighbourhood/kd_tree.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <nanoflann.hpp>
 
 #include "core/ordered_key.h"
+#include "grid_knn.h"
 #include "pcsketch/core/error.h"
 
 namespace pcsketch::neighbourhood {
@@ -126,11 +131,21 @@ class InclusiveRadius {
 
 struct KdTree::Impl {
   PointsAdaptor adaptor;
-  Index index;
   // Leaves of 16 points: measured faster than nanoflann's default 10 for k = 16 queries on 1M points.
+  Index index;
+  std::once_flag built;
+  std::unique_ptr<detail::GridKnn> grid;  ///< made by knn_of_every_point
+
   explicit Impl(const std::vector<Vec3f>& points)
-      : adaptor{points}, index(3, adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
-    index.buildIndex();
+      : adaptor{points},
+        index(3, adaptor,
+              nanoflann::KDTreeSingleIndexAdaptorParams(
+                  16, nanoflann::KDTreeSingleIndexAdaptorFlags::SkipInitialBuildIndex)) {}
+
+  /// The index, built by the first query (the build was 4% of a 1M draw, whose clean cloud may ask none).
+  const Index& ready() {
+    std::call_once(built, [this] { index.buildIndex(); });
+    return index;
   }
 };
 
@@ -145,6 +160,8 @@ KdTree& KdTree::operator=(KdTree&&) noexcept = default;
 
 std::size_t KdTree::size() const { return impl_->adaptor.points.size(); }
 
+void KdTree::build() const { impl_->ready(); }
+
 void KdTree::knn(const Vec3f& query, std::size_t k, std::vector<std::uint32_t>& indices,
                  std::vector<float>& distances) const {
   k = std::min(k, size());
@@ -154,7 +171,7 @@ void KdTree::knn(const Vec3f& query, std::size_t k, std::vector<std::uint32_t>& 
   thread_local std::vector<Candidate> found;
   found.resize(k);
   const auto search = [&](auto result) {
-    impl_->index.findNeighbors(result, query.data(), nanoflann::SearchParams());
+    impl_->ready().findNeighbors(result, query.data(), nanoflann::SearchParams());
     result.finish();
   };
   if (k <= 32) {
@@ -172,6 +189,11 @@ void KdTree::knn_of_point(std::size_t i, std::size_t k, std::vector<std::uint32_
                           std::vector<float>& distances) const {
   if (i >= size()) throw Error("kd-tree: point " + std::to_string(i) + " out of range");
   k = std::min(k, size() - 1);
+  if (!impl_->grid || !impl_->grid->knn_of_point(i, k, indices, distances)) tree_knn_of_point(i, k, indices, distances);
+}
+
+void KdTree::tree_knn_of_point(std::size_t i, std::size_t k, std::vector<std::uint32_t>& indices,
+                               std::vector<float>& distances) const {
   knn(impl_->adaptor.points[i], k + 1, indices, distances);
   // With more than k duplicates of i, i itself may lie beyond the k+1 found: then the farthest one is dropped.
   auto self = std::find(indices.begin(), indices.end(), static_cast<std::uint32_t>(i));
@@ -186,13 +208,34 @@ std::vector<std::pair<std::uint32_t, float>>& KdTree::within(const Vec3f& query,
   hits.clear();
   if (!(radius >= 0) || size() == 0) return hits;
   InclusiveRadius result(radius, hits);
-  impl_->index.findNeighbors(result, query.data(), nanoflann::SearchParams());
+  impl_->ready().findNeighbors(result, query.data(), nanoflann::SearchParams());
   return hits;
 }
 
 void KdTree::radius_unsorted(const Vec3f& query, float radius, std::vector<std::uint32_t>& indices) const {
   indices.clear();
   for (const auto& hit : within(query, radius)) indices.push_back(hit.first);
+}
+
+void KdTree::radius_any_order(const Vec3f& query, float radius, std::vector<std::uint32_t>& indices) const {
+  if (!impl_->grid || !impl_->grid->within(query, radius, indices)) radius_unsorted(query, radius, indices);
+}
+
+void KdTree::knn_of_every_point(std::size_t k, std::uint32_t* indices, float* distances,
+                                const ProgressFn& progress) const {
+  if (k == 0 || k >= size())
+    throw Error("kd-tree: " + std::to_string(k) + " neighbours of each of " + std::to_string(size()) + " points");
+  if (!impl_->grid) impl_->grid = std::make_unique<detail::GridKnn>(impl_->adaptor.points, k);
+  const std::vector<std::uint32_t> rest = impl_->grid->fill(k, indices, distances, progress);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rest.size(), 64), [&](const auto& r) {
+    thread_local std::vector<std::uint32_t> found;
+    thread_local std::vector<float> found_distances;
+    for (std::size_t c = r.begin(); c < r.end(); ++c) {
+      tree_knn_of_point(rest[c], k, found, found_distances);
+      std::copy(found.begin(), found.end(), indices + rest[c] * k);
+      std::copy(found_distances.begin(), found_distances.end(), distances + rest[c] * k);
+    }
+  });
 }
 
 void KdTree::radius(const Vec3f& query, float radius, std::vector<std::uint32_t>& indices,

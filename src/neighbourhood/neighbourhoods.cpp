@@ -1,12 +1,9 @@
 #include "pcsketch/neighbourhood/neighbourhoods.h"
 
 #include <tbb/parallel_invoke.h>
-#include <tbb/task_group.h>
 
 #include <algorithm>
 
-#include "core/parallel_chunks.h"
-#include "grid_knn.h"
 #include "pcsketch/core/error.h"
 
 namespace pcsketch::neighbourhood {
@@ -25,24 +22,6 @@ Neighbourhoods sized(const std::vector<Vec3f>& points, const NeighbourhoodOption
   return result;
 }
 
-/// The rows of `rest` from the tree.
-void fill_from_tree(const KdTree& tree, const std::vector<std::uint32_t>& rest, Neighbourhoods& result) {
-  const std::size_t k = result.k;
-  pcsketch::detail::parallel_chunks(
-      rest.size(), {}, "neighbourhoods",
-      [&](std::size_t begin, std::size_t end) {
-        thread_local std::vector<std::uint32_t> found;
-        thread_local std::vector<float> found_distances;
-        for (std::size_t r = begin; r < end; ++r) {
-          const std::size_t i = rest[r];
-          tree.knn_of_point(i, k, found, found_distances);
-          std::copy(found.begin(), found.end(), result.indices.begin() + std::ptrdiff_t(i * k));
-          std::copy(found_distances.begin(), found_distances.end(), result.distances.begin() + std::ptrdiff_t(i * k));
-        }
-      },
-      64);
-}
-
 }  // namespace
 
 Neighbourhoods compute_neighbourhoods(const KdTree& tree, const std::vector<Vec3f>& points,
@@ -51,30 +30,15 @@ Neighbourhoods compute_neighbourhoods(const KdTree& tree, const std::vector<Vec3
     throw Error("neighbourhoods: the kd-tree holds " + std::to_string(tree.size()) + " points but the cloud has " +
                 std::to_string(points.size()));
   Neighbourhoods result = sized(points, options);
-  if (result.k == 0) return result;
-  const std::vector<std::uint32_t> rest =
-      detail::grid_knn(points, result.k, result.indices.data(), result.distances.data(), options.progress);
-  fill_from_tree(tree, rest, result);
+  if (result.k > 0) tree.knn_of_every_point(result.k, result.indices.data(), result.distances.data(), options.progress);
   return result;
 }
 
 Neighbourhoods index_neighbourhoods(const std::vector<Vec3f>& points, std::optional<KdTree>& tree,
                                     const NeighbourhoodOptions& options) {
-  Neighbourhoods result = sized(points, options);
-  // The tree's build is serial: it runs beside the grid search, which takes the other cores.
-  tbb::task_group build;
-  build.run([&] { tree.emplace(points); });
-  std::vector<std::uint32_t> rest;
-  try {
-    if (result.k > 0)
-      rest = detail::grid_knn(points, result.k, result.indices.data(), result.distances.data(), options.progress);
-  } catch (...) {
-    build.wait();
-    throw;
-  }
-  build.wait();
-  fill_from_tree(*tree, rest, result);
-  return result;
+  // The tree is built by its first query: here only if the grid leaves rows.
+  tree.emplace(points);
+  return compute_neighbourhoods(*tree, points, options);
 }
 
 }  // namespace pcsketch::neighbourhood

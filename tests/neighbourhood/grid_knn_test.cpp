@@ -116,5 +116,54 @@ TEST(GridNeighbourhoods, TinyCloudsAndAllCopies) {
   EXPECT_EQ(index_neighbourhoods({}, tree, {.k = 16}).k, 0u);
 }
 
+/// The distance from point i to its 16th nearest (brute force): a radius on the cloud's own scale.
+float gridded_reach(const std::vector<Vec3f>& points, std::size_t i) {
+  std::vector<float> d;
+  for (const Vec3f& p : points) d.push_back((p - points[i]).norm());
+  std::nth_element(d.begin(), d.begin() + 16, d.end());
+  return d[16];
+}
+
+/// After knn_of_every_point the tree's grid answers its single-point queries first: each must equal what a tree
+/// without a grid gives, the k-NN bit for bit and the balls as sets.
+void expect_grid_queries_match(const std::vector<Vec3f>& points) {
+  const KdTree gridded(points), plain(points);
+  compute_neighbourhoods(gridded, points, {.k = 16});
+  std::vector<std::uint32_t> a, b;
+  std::vector<float> da, db;
+  for (std::size_t i = 0; i < points.size(); i += 7) {
+    for (const std::size_t k : {1u, 16u, 64u, 256u}) {
+      gridded.knn_of_point(i, k, a, da);
+      plain.knn_of_point(i, k, b, db);
+      ASSERT_EQ(a, b) << "point " << i << ", k " << k;
+      ASSERT_TRUE(std::equal(da.begin(), da.end(), db.begin(), db.end())) << "point " << i << ", k " << k;
+    }
+    const float r = gridded_reach(points, i);
+    for (const float radius : {0.f, r, 2.5f * r, 3 * r, 20 * r}) {
+      gridded.radius_any_order(points[i], radius, a);
+      plain.radius_unsorted(points[i], radius, b);
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      ASSERT_EQ(a, b) << "point " << i << ", radius " << radius;
+    }
+  }
+}
+
+TEST(GridNeighbourhoods, TreeQueriesFromTheGridMatchTheTree) {
+  std::vector<Vec3f> ordered;
+  const std::vector<Vec3f> sphere = hard_sphere(20000, 4);
+  for (const std::uint32_t i : spatial_order(sphere)) ordered.push_back(sphere[i]);
+  expect_grid_queries_match(ordered);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::vector<Vec3f> lattice, plane;
+  for (int x = 0; x < 30; ++x)
+    for (int y = 0; y < 30; ++y)
+      for (int z = 0; z < 3; ++z) lattice.emplace_back(float(x), float(y), float(z));
+  for (int i = 0; i < 5000; ++i) plane.emplace_back(u(rng), u(rng), 0.f);
+  expect_grid_queries_match(lattice);
+  expect_grid_queries_match(plane);
+}
+
 }  // namespace
 }  // namespace pcsketch::neighbourhood

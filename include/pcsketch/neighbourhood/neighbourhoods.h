@@ -43,8 +43,8 @@ struct Neighbourhoods {
 Neighbourhoods compute_neighbourhoods(const KdTree& tree, const std::vector<Vec3f>& points,
                                       const NeighbourhoodOptions& options = {});
 
-/// As compute_neighbourhoods, building the kd-tree of `points` into `tree` at the same time (its build is serial and
-/// runs beside the grid's search); for callers that need the tree afterwards.
+/// As compute_neighbourhoods, with the kd-tree of `points` put into `tree` for callers that need it afterwards (it
+/// builds itself at its first query: here only when the grid leaves rows).
 Neighbourhoods index_neighbourhoods(const std::vector<Vec3f>& points, std::optional<KdTree>& tree,
                                     const NeighbourhoodOptions& options = {});
 
