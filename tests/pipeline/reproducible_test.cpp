@@ -2,6 +2,7 @@
 // (the PDF's dates are fixed, render/pdf.h).
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -25,7 +26,8 @@ std::string bytes_of(const fs::path& path) {
 }
 
 TEST(Reproducible, TwoDrawingsGiveTheSameBytesInEveryFormat) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "pcsketch_reproducible";
+  // Its own directory per process: two suites run at once (release and a sanitizer build) must not share files.
+  const fs::path dir = fs::path(::testing::TempDir()) / ("pcsketch_reproducible_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   DrawOptions options;
   options.camera.width = options.camera.height = 200;
