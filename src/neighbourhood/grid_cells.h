@@ -250,6 +250,10 @@ struct GridKnn::Impl {
   double per_cell;   ///< points an occupied cell holds on average, about
   mutable std::atomic<std::uint32_t> misses{0};  ///< single-point queries the grid could not prove
 
+  // A constructor, not an aggregate: clang 14 (the fuzz build) has no parenthesised aggregate initialisation.
+  Impl(const std::vector<Vec3f>& p, std::size_t most_candidates, double points_per_cell)
+      : points(p), most(most_candidates), per_cell(points_per_cell) {}
+
   /// The k nearest of point i (self excluded) into cand.keys from the (2 reach + 1)³ cells around its own, when the
   /// k-th is provably nearer than the way out of them.
   bool prove(Candidates& cand, std::size_t i, std::size_t k, int reach) const {

@@ -125,7 +125,7 @@ void fill_near(const GridKnn::Impl& g, std::size_t k, std::vector<std::uint8_t>&
 }  // namespace
 
 GridKnn::GridKnn(const std::vector<Vec3f>& points, std::size_t k)
-    : impl_(std::make_unique<Impl>(points, std::nullopt, 64 * (k + 1), 0.5 * double(k + 1))) {
+    : impl_(std::make_unique<Impl>(points, 64 * (k + 1), 0.5 * double(k + 1))) {
   const Box3f box = bounding_box(points);
   if (!box.empty() && box.size().allFinite() && box.size().maxCoeff() > 0)
     impl_->grid.emplace(points, Frame{box.min.cast<double>(), cell_edge(points, box, impl_->per_cell)});
