@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <numeric>
 
 #include "pcsketch/core/assert.h"
@@ -80,6 +81,25 @@ float Polyline::length() const {
   for (std::size_t i = 1; i < points.size(); ++i) total += (points[i] - points[i - 1]).norm();
   if (closed && points.size() > 2) total += (points.front() - points.back()).norm();
   return total;
+}
+
+void Polyline::reverse() {
+  std::reverse(points.begin(), points.end());
+  std::reverse(curvature.begin(), curvature.end());
+  std::reverse(point_index.begin(), point_index.end());
+}
+
+void Polyline::append(Polyline&& other) {
+  const std::size_t n = size();
+  points.insert(points.end(), other.points.begin(), other.points.end());
+  if (curvature.size() == n && other.curvature.size() == other.size())
+    curvature.insert(curvature.end(), other.curvature.begin(), other.curvature.end());
+  else
+    curvature.clear();
+  if (point_index.size() == n && other.point_index.size() == other.size())
+    point_index.insert(point_index.end(), other.point_index.begin(), other.point_index.end());
+  else
+    point_index.clear();
 }
 
 }  // namespace pcsketch

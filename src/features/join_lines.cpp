@@ -34,26 +34,6 @@ Vec3f end_tangent(const Polyline& line, std::uint8_t side, float reach) {
   return len > 0.f ? Vec3f(t / len) : Vec3f::Zero();
 }
 
-void reverse_line(Polyline& line) {
-  std::reverse(line.points.begin(), line.points.end());
-  std::reverse(line.curvature.begin(), line.curvature.end());
-  std::reverse(line.point_index.begin(), line.point_index.end());
-}
-
-// Appends b to a (a's last vertex connects to b's first). Per-vertex arrays are kept only if both lines have them.
-void append_line(Polyline& a, Polyline&& b) {
-  const std::size_t na = a.size();
-  a.points.insert(a.points.end(), b.points.begin(), b.points.end());
-  if (a.curvature.size() == na && b.curvature.size() == b.size())
-    a.curvature.insert(a.curvature.end(), b.curvature.begin(), b.curvature.end());
-  else
-    a.curvature.clear();
-  if (a.point_index.size() == na && b.point_index.size() == b.size())
-    a.point_index.insert(a.point_index.end(), b.point_index.begin(), b.point_index.end());
-  else
-    a.point_index.clear();
-}
-
 void smooth(Polyline& line, int iterations, float weight) {
   const std::size_t n = line.size();
   if (n < 3) return;
@@ -151,9 +131,9 @@ JoinResult join_lines(std::vector<Polyline> lines, float radius, float spacing, 
       const End& other_end = p.line == keep ? q : p;
       Polyline& target = lines[keep];
       Polyline& source = lines[other_end.line];
-      if (kept_end.side == 0) reverse_line(target);
-      if (other_end.side == 1) reverse_line(source);
-      append_line(target, std::move(source));
+      if (kept_end.side == 0) target.reverse();
+      if (other_end.side == 1) source.reverse();
+      target.append(std::move(source));
       alive[other_end.line] = false;
     }
     result.joins += joined;

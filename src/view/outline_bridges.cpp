@@ -88,18 +88,19 @@ float image_length(const Rollable& r, const std::vector<std::uint32_t>& chain) {
   return length;
 }
 
-/// The traced outline seen from the rollable points: each vertex's owner and a grid over the vertices.
+/// The traced outline seen from the rollable points: its lines and a grid over their vertices.
 struct Traced {
   std::vector<std::vector<std::uint32_t>> lines;  ///< rollable indices of each line's vertices
   std::vector<float> lengths;                     ///< image length of each line
-  std::vector<Owner> owner;                       ///< by rollable index
   std::vector<std::uint32_t> vertex;              ///< rollable index of each grid entry
   PointGrid<2> grid;
 
-  static Traced make(const Rollable& r, const std::vector<std::uint32_t>& slot, const std::vector<Polyline>& outline) {
+  /// `owner` (by rollable index) receives each traced vertex's line and place; the bridges add theirs later.
+  static Traced make(const Rollable& r, const std::vector<std::uint32_t>& slot, const std::vector<Polyline>& outline,
+                     std::vector<Owner>& owner) {
     std::vector<std::vector<std::uint32_t>> lines(outline.size());
     std::vector<float> lengths(outline.size());
-    std::vector<Owner> owner(r.ids.size());
+    owner.assign(r.ids.size(), Owner{});
     std::vector<std::uint32_t> vertex;
     std::vector<Vec2f> pts;
     for (std::uint32_t l = 0; l < outline.size(); ++l) {
@@ -113,7 +114,7 @@ struct Traced {
       lengths[l] = image_length(r, lines[l]);
     }
     PointGrid<2> grid(pts, r.grid.cell());
-    return {std::move(lines), std::move(lengths), std::move(owner), std::move(vertex), std::move(grid)};
+    return {std::move(lines), std::move(lengths), std::move(vertex), std::move(grid)};
   }
 };
 
@@ -197,8 +198,8 @@ std::vector<Polyline> find_bridges(const ContourPoints& cp, const std::vector<Ve
   const Rollable r = Rollable::make(cp, o.bridge_radius_factor);
   std::vector<std::uint32_t> slot(cp.projected.size(), kNone);  // cloud index → rollable index
   for (std::uint32_t k = 0; k < r.ids.size(); ++k) slot[r.ids[k]] = k;
-  const Traced traced = Traced::make(r, slot, outline);
-  std::vector<Owner> owner = traced.owner;  // bridges become owners too
+  std::vector<Owner> owner;
+  const Traced traced = Traced::make(r, slot, outline, owner);
   const auto outward_of = [&](std::uint32_t k) {
     const auto it = std::lower_bound(cp.boundary.begin(), cp.boundary.end(), r.ids[k]);
     return it != cp.boundary.end() && *it == r.ids[k] ? cp.outward[static_cast<std::size_t>(it - cp.boundary.begin())]
@@ -236,19 +237,10 @@ std::vector<Polyline> find_bridges(const ContourPoints& cp, const std::vector<Ve
   return bridges;
 }
 
-/// Appends `from` to `to` at `to`'s back, `from` reversed when `reversed`, without the vertex they share.
-void append(Polyline& to, Polyline&& from, bool reversed) {
-  if (reversed) {
-    std::reverse(from.points.begin(), from.points.end());
-    std::reverse(from.point_index.begin(), from.point_index.end());
-  }
-  to.points.insert(to.points.end(), from.points.begin() + 1, from.points.end());
-  to.point_index.insert(to.point_index.end(), from.point_index.begin() + 1, from.point_index.end());
-}
-
-void reverse(Polyline& line) {
-  std::reverse(line.points.begin(), line.points.end());
-  std::reverse(line.point_index.begin(), line.point_index.end());
+/// Drops the last vertex of an outline line (vertices and point_index only: it has no curvature).
+void drop_last(Polyline& line) {
+  line.points.pop_back();
+  line.point_index.pop_back();
 }
 
 /// Joins open lines that end at the same cloud point into one line (closed when it comes back to its start), so a
@@ -275,16 +267,16 @@ std::vector<Polyline> join_at_ends(std::vector<Polyline> lines) {
         if (free == it->second.end()) break;
         const std::size_t next = *free;
         taken[next] = 1;
-        const bool reversed = lines[next].point_index.back() == end;
-        append(line, std::move(lines[next]), reversed);
+        if (lines[next].point_index.back() == end) lines[next].reverse();
+        drop_last(line);  // the vertex both lines share: `next` starts with it
+        line.append(std::move(lines[next]));
         if (line.point_index.front() == line.point_index.back()) {  // back at its start
-          line.points.pop_back();
-          line.point_index.pop_back();
+          drop_last(line);
           line.closed = true;
           break;
         }
       }
-      reverse(line);  // the other end next
+      line.reverse();  // the other end next
     }
     out.push_back(std::move(line));
   }

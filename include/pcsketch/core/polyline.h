@@ -28,6 +28,11 @@ struct Polyline {
   std::size_t size() const { return points.size(); }
   /// Sum of segment lengths (including the closing segment when closed).
   float length() const;
+  /// Reverses the vertex order, and the per-vertex arrays with it.
+  void reverse();
+  /// Appends `other`'s vertices after this line's last (its last connects to other's first). A per-vertex array is
+  /// kept only if both lines have it.
+  void append(Polyline&& other);
 };
 
 }  // namespace pcsketch
