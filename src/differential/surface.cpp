@@ -102,8 +102,8 @@ void thin_scan_lines(PointCloud& cloud, Surface& surface, std::optional<neighbou
   surface.neighbourhoods = index_neighbourhoods(cloud.positions, tree, surface.timings, options);
 }
 
-/// Moves the outliers of `cloud` to surface.outliers and recomputes the tree and neighbourhoods of what is left
-/// (only when there are outliers: a clean cloud keeps the ones it has).
+/// Moves the outliers of `cloud` to surface.outliers and updates the tree and neighbourhoods for what is left (only
+/// when there are outliers: a clean cloud keeps the ones it has).
 void remove_outliers(PointCloud& cloud, Surface& surface, std::optional<neighbourhood::KdTree>& tree,
                      const SurfaceOptions& options) {
   SurfaceTimings& t = surface.timings;
@@ -116,7 +116,10 @@ void remove_outliers(PointCloud& cloud, Surface& surface, std::optional<neighbou
   timed(t.outliers, [&] { surface.outliers = split_off(cloud, found.outlier); });
   surface.isolated_outliers = found.isolated;
   surface.clustered_outliers = found.clustered;
-  surface.neighbourhoods = index_neighbourhoods(cloud.positions, tree, surface.timings, options);
+  surface.neighbourhoods = timed(t.neighbourhoods, [&] {
+    return neighbourhood::neighbourhoods_after_removal(surface.neighbourhoods, found.outlier, cloud.positions, tree,
+                                                       with_progress(options.neighbourhood, options.progress));
+  });
 }
 
 /// The part of the normals' angular spread (normal_noise) that noise can explain. A sparse cloud's neighbours spread

@@ -226,14 +226,28 @@ void KdTree::knn_of_every_point(std::size_t k, std::uint32_t* indices, float* di
   if (k == 0 || k >= size())
     throw Error("kd-tree: " + std::to_string(k) + " neighbours of each of " + std::to_string(size()) + " points");
   if (!impl_->grid) impl_->grid = std::make_unique<detail::GridKnn>(impl_->adaptor.points, k);
-  const std::vector<std::uint32_t> rest = impl_->grid->fill(k, indices, distances, progress);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rest.size(), 64), [&](const auto& r) {
+  // The grid's fill has already failed on the rows it leaves: the tree answers them.
+  fill_rows(impl_->grid->fill(k, indices, distances, progress), k, indices, distances, false);
+}
+
+void KdTree::knn_of_rows(const std::vector<std::uint32_t>& rows, std::size_t k, std::uint32_t* indices,
+                         float* distances) const {
+  if (k == 0 || k >= size())
+    throw Error("kd-tree: " + std::to_string(k) + " neighbours of points of a cloud of " + std::to_string(size()));
+  if (!impl_->grid) impl_->grid = std::make_unique<detail::GridKnn>(impl_->adaptor.points, k);
+  fill_rows(rows, k, indices, distances, true);
+}
+
+void KdTree::fill_rows(const std::vector<std::uint32_t>& rows, std::size_t k, std::uint32_t* indices,
+                       float* distances, bool grid_first) const {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size(), 64), [&](const auto& r) {
     thread_local std::vector<std::uint32_t> found;
     thread_local std::vector<float> found_distances;
     for (std::size_t c = r.begin(); c < r.end(); ++c) {
-      tree_knn_of_point(rest[c], k, found, found_distances);
-      std::copy(found.begin(), found.end(), indices + rest[c] * k);
-      std::copy(found_distances.begin(), found_distances.end(), distances + rest[c] * k);
+      if (grid_first) knn_of_point(rows[c], k, found, found_distances);
+      else tree_knn_of_point(rows[c], k, found, found_distances);
+      std::copy(found.begin(), found.end(), indices + rows[c] * k);
+      std::copy(found_distances.begin(), found_distances.end(), distances + rows[c] * k);
     }
   });
 }

@@ -1,5 +1,7 @@
 #include "pcsketch/neighbourhood/neighbourhoods.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
@@ -39,6 +41,39 @@ Neighbourhoods index_neighbourhoods(const std::vector<Vec3f>& points, std::optio
   // The tree is built by its first query: here only if the grid leaves rows.
   tree.emplace(points);
   return compute_neighbourhoods(*tree, points, options);
+}
+
+Neighbourhoods neighbourhoods_after_removal(const Neighbourhoods& before, const std::vector<std::uint8_t>& removed,
+                                           const std::vector<Vec3f>& points, std::optional<KdTree>& tree,
+                                           const NeighbourhoodOptions& options) {
+  const std::size_t old_n = removed.size();
+  if (before.size() != old_n || static_cast<std::size_t>(std::count(removed.begin(), removed.end(), 0)) != points.size())
+    throw Error("neighbourhoods: " + std::to_string(removed.size()) + " removal flags for " +
+                std::to_string(before.size()) + " lists and " + std::to_string(points.size()) + " points left");
+  Neighbourhoods result = sized(points, options);
+  const std::size_t k = result.k;
+  if (k == 0 || k != before.k) return index_neighbourhoods(points, tree, options);
+  std::vector<std::uint32_t> renumbered(old_n, UINT32_MAX), old_of(points.size());
+  for (std::uint32_t i = 0, next = 0; i < old_n; ++i)
+    if (!removed[i]) old_of[next] = i, renumbered[i] = next++;
+  std::vector<std::uint8_t> changed(points.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      const std::size_t from = old_of[i];
+      for (std::size_t m = 0; m < k; ++m) {
+        const std::uint32_t j = renumbered[before.indices[from * k + m]];
+        changed[i] |= j == UINT32_MAX;
+        result.indices[i * k + m] = j;
+        result.distances[i * k + m] = before.distances[from * k + m];
+      }
+    }
+  });
+  std::vector<std::uint32_t> rows;
+  for (std::uint32_t i = 0; i < changed.size(); ++i)
+    if (changed[i]) rows.push_back(i);
+  tree.emplace(points);
+  tree->knn_of_rows(rows, k, result.indices.data(), result.distances.data());
+  return result;
 }
 
 }  // namespace pcsketch::neighbourhood

@@ -11,6 +11,7 @@
 #include <random>
 
 #include "nanoflann_metric.h"
+#include "pcsketch/core/error.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
 #include "pcsketch/neighbourhood/neighbourhoods.h"
 #include "pcsketch/neighbourhood/spatial_order.h"
@@ -114,6 +115,47 @@ TEST(GridNeighbourhoods, TinyCloudsAndAllCopies) {
   EXPECT_EQ(nb.k, 3u);
   expect_brute_force(few, nb);
   EXPECT_EQ(index_neighbourhoods({}, tree, {.k = 16}).k, 0u);
+}
+
+/// Lists updated after points leave the cloud equal the lists computed afresh, bit for bit: removed far points
+/// (no list held them), the clump and some copies (lists that held them), and points scattered over the sphere.
+TEST(GridNeighbourhoods, ListsAfterARemovalEqualFreshOnes) {
+  const std::vector<Vec3f> sphere = hard_sphere(20000, 6);
+  std::vector<Vec3f> all;
+  for (const std::uint32_t i : spatial_order(sphere)) all.push_back(sphere[i]);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::vector<std::uint8_t> removed(all.size(), 0);
+  for (std::size_t i = 0; i < all.size(); ++i)
+    removed[i] = all[i].z() > 1.5f || all[i].x() > 1.5f || u(rng) < 0.01f || (all[i] == all[7] && u(rng) < 0.5f);
+  std::vector<Vec3f> kept;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (!removed[i]) kept.push_back(all[i]);
+  ASSERT_GT(all.size() - kept.size(), 200u);
+  for (const std::size_t k : {1u, 16u, 40u}) {
+    SCOPED_TRACE(k);
+    std::optional<KdTree> before_tree, updated_tree, fresh_tree;
+    const Neighbourhoods before = index_neighbourhoods(all, before_tree, {.k = k});
+    const Neighbourhoods updated = neighbourhoods_after_removal(before, removed, kept, updated_tree, {.k = k});
+    const Neighbourhoods fresh = index_neighbourhoods(kept, fresh_tree, {.k = k});
+    ASSERT_EQ(updated.k, fresh.k);
+    EXPECT_EQ(updated.indices, fresh.indices);
+    EXPECT_TRUE(std::equal(updated.distances.begin(), updated.distances.end(), fresh.distances.begin(),
+                           fresh.distances.end(), [](float a, float b) {
+                             return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
+                           }));
+    ASSERT_TRUE(updated_tree.has_value());
+    expect_tree_rows(kept, *updated_tree, updated);
+  }
+  // Removing all but two points leaves lists of one neighbour: computed afresh.
+  std::vector<std::uint8_t> most(all.size(), 1);
+  most[0] = most[1] = 0;
+  std::optional<KdTree> tree;
+  const Neighbourhoods before = index_neighbourhoods(all, tree, {.k = 16});
+  const Neighbourhoods two = neighbourhoods_after_removal(before, most, {all[0], all[1]}, tree, {.k = 16});
+  EXPECT_EQ(two.k, 1u);
+  EXPECT_EQ(two.indices, (std::vector<std::uint32_t>{1, 0}));
+  EXPECT_THROW(neighbourhoods_after_removal(before, most, {all[0]}, tree, {.k = 16}), Error);
 }
 
 /// The distance from point i to its 16th nearest (brute force): a radius on the cloud's own scale.

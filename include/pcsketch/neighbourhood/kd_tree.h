@@ -41,6 +41,11 @@ class KdTree {
   /// about (k + 1) / 2 points, stays with the tree for its later single-point queries. Not concurrently with other
   /// queries.
   void knn_of_every_point(std::size_t k, std::uint32_t* indices, float* distances, const ProgressFn& progress) const;
+  /// knn_of_point(i, k) of each i of `rows` into indices + i·k and distances + i·k, in parallel, with the grid of
+  /// knn_of_every_point (made here if there is none yet, so that later queries find it too). Not concurrently with
+  /// other queries.
+  void knn_of_rows(const std::vector<std::uint32_t>& rows, std::size_t k, std::uint32_t* indices,
+                   float* distances) const;
   std::size_t size() const;
   /// Builds the tree now if it is not built yet (a query would): for a caller with a core to spare before queries.
   void build() const;
@@ -51,6 +56,9 @@ class KdTree {
   /// knn_of_point from the tree alone.
   void tree_knn_of_point(std::size_t i, std::size_t k, std::vector<std::uint32_t>& indices,
                          std::vector<float>& distances) const;
+  /// Rows `rows` of knn_of_every_point's output, from knn_of_point (`grid_first`) or from the tree alone.
+  void fill_rows(const std::vector<std::uint32_t>& rows, std::size_t k, std::uint32_t* indices, float* distances,
+                 bool grid_first) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -48,4 +48,14 @@ Neighbourhoods compute_neighbourhoods(const KdTree& tree, const std::vector<Vec3
 Neighbourhoods index_neighbourhoods(const std::vector<Vec3f>& points, std::optional<KdTree>& tree,
                                     const NeighbourhoodOptions& options = {});
 
+/// index_neighbourhoods of `points`: what is left, in order, of the cloud whose lists are `before` once the points
+/// flagged in `removed` are taken out. A list that held none of them keeps its neighbours, renumbered (taking points
+/// out brings no other nearer, and renumbering in order keeps ties in index order); the others are queried again.
+/// The same lists bit for bit, at the cost of the ones that changed (a few stray points no longer cost a second
+/// pass over the whole cloud).
+/// @throws pcsketch::Error if `removed` does not hold a flag per point of `before` or the counts disagree
+Neighbourhoods neighbourhoods_after_removal(const Neighbourhoods& before, const std::vector<std::uint8_t>& removed,
+                                           const std::vector<Vec3f>& points, std::optional<KdTree>& tree,
+                                           const NeighbourhoodOptions& options = {});
+
 }  // namespace pcsketch::neighbourhood
