@@ -49,6 +49,10 @@ void add_cleaning(Builder& b) {
   b.add(PCSKETCH_OPTION(surface.scan_lines.min_anisotropy),
         {.range = closed(1, 1e6),
          .help = "...and its lines lie this many times farther apart than their points along them"});
+  b.add(PCSKETCH_OPTION(surface.scan_lines.noisy_dimension),
+        {.range = closed(0, 2),
+         .help = "Noisy scan lines: the cloud's median local dimension falls to this at 8 to 64 neighbours (0: not "
+                 "sought)"});
   b.add(PCSKETCH_OPTION(surface.scan_lines.cell_factor),
         {.range = positive(100), .unit = "line spacings", .help = "Cube edge of the thinning of scan lines"});
   b.add(PCSKETCH_OPTION(surface.denoise.enabled),

@@ -5,7 +5,9 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <numbers>
 
 #include "pcsketch/core/error.h"
 
@@ -64,6 +66,69 @@ double quantile(std::vector<double>& values, double fraction) {
   return *at;
 }
 
+/// Neighbour counts at doubling scales, whose distances give the cloud's local dimension between them.
+constexpr std::array<std::size_t, 7> kScales = {4, 8, 16, 32, 64, 128, 256};
+constexpr std::size_t kPairs = kScales.size() - 1;
+/// Points whose dimension profile is measured for noisy lines (medians over them decide).
+constexpr std::size_t kProfileSamples = 256;
+
+/// Distances of the kScales-th neighbours of one point.
+using Profile = std::array<float, kScales.size()>;
+
+/// log 2 / log(d(2m) / d(m)): the local dimension between scale pair j's two neighbour counts (2 on a surface, 1
+/// along a line, 3 within noise; 9 where the distances do not grow).
+double dimension(const Profile& p, std::size_t j) {
+  const double ratio = static_cast<double>(p[j + 1]) / static_cast<double>(p[j]);
+  return p[j] > 0 && ratio > 1 ? std::log(2.0) / std::log(ratio) : 9.0;
+}
+
+/// Noisy lines: noise as wide as a fraction of the lines' spacing makes each line a tube, whose 8 nearest points no
+/// longer make a line. Between the tube's width and the lines' spacing the cloud is still one-dimensional, and beyond
+/// the spacing two-dimensional: the cloud lies on lines when the median dimension falls to noisy_dimension at 8–64
+/// neighbours and rises past 1.8 at a larger scale. Where the dimension is lowest, m points lie along 2 d_m of line
+/// (λ = m / 2 d_m points per length), and at 256 neighbours the density per area is ρ = 256 / π d_256²: the lines lie
+/// L = λ / ρ apart, L λ times farther than the points along them.
+ScanLines noisy_lines(const std::vector<Vec3f>& points, const neighbourhood::KdTree& tree,
+                      const ScanLineOptions& options) {
+  const std::size_t n = points.size();
+  ScanLines result;
+  if (n <= kScales.back() || !(options.noisy_dimension > 0)) return result;
+  const std::size_t stride = std::max<std::size_t>(1, n / kProfileSamples), samples = (n + stride - 1) / stride;
+  std::vector<Profile> profiles(samples);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples, 16), [&](const tbb::blocked_range<std::size_t>& r) {
+    std::vector<std::uint32_t> found;
+    std::vector<float> distances;
+    for (std::size_t s = r.begin(); s != r.end(); ++s) {
+      tree.knn_of_point(s * stride, kScales.back(), found, distances);
+      for (std::size_t j = 0; j < kScales.size(); ++j) profiles[s][j] = distances[kScales[j] - 1];
+    }
+  });
+  std::array<double, kPairs> median{};
+  std::vector<double> values(samples);
+  for (std::size_t j = 0; j < kPairs; ++j) {
+    for (std::size_t s = 0; s < samples; ++s) values[s] = dimension(profiles[s], j);
+    median[j] = quantile(values, 0.5);
+  }
+  const std::size_t line = static_cast<std::size_t>(std::min_element(median.begin() + 1, median.begin() + 4) - median.begin());
+  const double beyond = *std::max_element(median.begin() + static_cast<std::ptrdiff_t>(line) + 1, median.end());
+  if (!(median[line] <= options.noisy_dimension) || !(beyond >= 1.8)) return result;
+  std::vector<double> spacing, anisotropy;
+  std::size_t on_lines = 0;
+  for (const Profile& p : profiles) {
+    on_lines += std::min({dimension(p, 1), dimension(p, 2), dimension(p, 3)}) <= options.noisy_dimension;
+    const double along = static_cast<double>(kScales[line + 1]) / (2.0 * p[line + 1]);
+    const double area = static_cast<double>(kScales.back()) / (std::numbers::pi * p.back() * p.back());
+    if (!(along > 0 && std::isfinite(along) && area > 0 && std::isfinite(area))) continue;
+    spacing.push_back(along / area);
+    anisotropy.push_back(along * along / area);
+  }
+  result.line_fraction = static_cast<double>(on_lines) / static_cast<double>(samples);
+  if (spacing.empty()) return result;
+  result.anisotropy = quantile(anisotropy, 0.5);
+  if (result.anisotropy >= options.min_anisotropy) result.spacing = quantile(spacing, 0.25);
+  return result;
+}
+
 }  // namespace
 
 ScanLines find_scan_lines(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& neighbourhoods,
@@ -86,11 +151,15 @@ ScanLines find_scan_lines(const std::vector<Vec3f>& points, const neighbourhood:
   });
   std::erase_if(gaps, [](double g) { return !(g > 0); });
   result.line_fraction = static_cast<double>(gaps.size()) / static_cast<double>(samples);
-  if (!(result.line_fraction > options.min_fraction)) return result;
-  result.anisotropy = quantile(gaps, 0.5) / std::max(quantile(nearest, 0.5), 1e-30);
-  // Where a surface slopes along the lines, they lie farther apart on it than their spacing: the lower quartile.
-  if (result.anisotropy >= options.min_anisotropy) result.spacing = quantile(gaps, 0.25);
-  return result;
+  if (result.line_fraction > options.min_fraction) {
+    result.anisotropy = quantile(gaps, 0.5) / std::max(quantile(nearest, 0.5), 1e-30);
+    // Where a surface slopes along the lines, they lie farther apart on it than their spacing: the lower quartile.
+    if (result.anisotropy >= options.min_anisotropy) result.spacing = quantile(gaps, 0.25);
+  }
+  if (result.found()) return result;
+  // Light noise puts the nearest point off a line within its own tube, heavier noise hides the line from the PCA.
+  const ScanLines noisy = noisy_lines(points, tree, options);
+  return noisy.found() ? noisy : result;
 }
 
 }  // namespace pcsketch::clean

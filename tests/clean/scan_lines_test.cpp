@@ -31,9 +31,27 @@ TEST(ScanLines, RingsOfASphereAreFoundWithTheirSpacing) {
   EXPECT_FALSE(run(rings, {.enabled = false}).found());
 }
 
+TEST(ScanLines, NoisyRingsAreFoundWithTheirSpacing) {
+  // Noise of a twentieth and an eighth of the rings' spacing: each ring a tube whose 8 nearest points make no line.
+  // (At a fifth, the tubes fill the gaps between the rings up to 32 neighbours: not found.)
+  const double step = 2 * std::sin(0.5 * 3.14159265358979 / 41);
+  for (const float noise : {0.05f, 0.125f}) {
+    SCOPED_TRACE(noise);
+    const std::vector<Vec3f> rings = test::sphere_rings(40, 20.f, noise, 3);
+    const ScanLines found = run(rings);
+    ASSERT_TRUE(found.found()) << found.line_fraction << " of the samples on lines, anisotropy " << found.anisotropy;
+    EXPECT_GT(found.line_fraction, 0.5);
+    EXPECT_GT(found.anisotropy, 10.0);
+    EXPECT_NEAR(found.spacing, step, 0.25 * step);
+    EXPECT_FALSE(run(rings, {.noisy_dimension = 0}).found());
+  }
+}
+
 TEST(ScanLines, EvenSamplesAreNotLines) {
   EXPECT_FALSE(run(test::sphere(1.f, {.n = 20000, .seed = 4}).positions).found());
   EXPECT_FALSE(run(test::cube(1.f, {.n = 20000, .seed = 4, .noise_sigma = 0.004f}).positions).found());
+  EXPECT_FALSE(run(test::sphere(1.f, {.n = 20000, .seed = 5, .noise_sigma = 0.01f}).positions).found());
+  EXPECT_FALSE(run(test::torus(1.f, 0.3f, {.n = 20000, .seed = 6, .noise_sigma = 0.003f}).positions).found());
   // 4:1 rings: the nearest neighbours still span two rings often enough; drawn as they are.
   EXPECT_FALSE(run(test::sphere_rings(80, 4.f)).found());
 }

@@ -28,6 +28,11 @@ struct ScanLineOptions {
   /// point off it) than the median nearest-neighbour distance: 11–60 on those lines. The vertices of CAD meshes whose
   /// faces hold none lie on lines too, their edges (25–46% of the points), but 5:1 apart or less.
   float min_anisotropy = 8.f;
+  /// Noisy lines, whose 8 nearest points make no line: the cloud's median local dimension (log 2 over the log of the
+  /// ratio of the distances to the 2m-th and m-th neighbours) falls to this at m = 8, 16 or 32 and rises past 1.8 at
+  /// a larger m. Evenly sampled surfaces, noisy or not, 1.89–3.1; the 60 cuts of bench_scans with noise of 0.05–0.1%
+  /// of the diagonal 1.06–1.46 (docs/geometry.md, "Scan lines"). 0: not sought.
+  float noisy_dimension = 1.5f;
   /// The thinning's cube edge, in units of the lines' spacing: 0.7 keeps about 1.4 points per spacing along a line
   /// and closes the outline where 1 left gaps.
   float cell_factor = 0.7f;
@@ -35,17 +40,22 @@ struct ScanLineOptions {
 };
 
 struct ScanLines {
-  double line_fraction = 0;  ///< of the sampled points, those on a line next to a parallel one
-  double anisotropy = 0;     ///< the lines' spacing over the median nearest-neighbour distance (0: not measured)
+  /// Of the sampled points, those on a line next to a parallel one (noisy lines: those whose local dimension falls
+  /// to noisy_dimension)
+  double line_fraction = 0;
+  /// The lines' spacing over the median nearest-neighbour distance (noisy lines: over the points' spacing along
+  /// them); 0: not measured
+  double anisotropy = 0;
   /// The lines' spacing, model units: the lower quartile of the distances from a point on a line to the nearest
-  /// point off it (where a surface slopes along the lines they lie farther apart on it). 0 when the cloud does not
-  /// lie on scan lines.
+  /// point off it (where a surface slopes along the lines they lie farther apart on it), or of noisy lines' spacing
+  /// estimated from their densities. 0 when the cloud does not lie on scan lines.
   double spacing = 0;
   bool found() const { return spacing > 0; }
 };
 
 /// Whether the cloud lies on scan lines (see ScanLineOptions) and their spacing. `tree` indexes `points`.
-/// Deterministic; at most max_samples k-NN queries of 64 (256 where lines lie farther apart), whatever #P.
+/// Deterministic; at most max_samples k-NN queries of 64 (256 where lines lie farther apart), and where those find no
+/// lines 256 queries of 256 for noisy ones, whatever #P.
 /// @throws pcsketch::Error if the neighbourhoods or the tree do not match the points
 ScanLines find_scan_lines(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& neighbourhoods,
                           const neighbourhood::KdTree& tree, const ScanLineOptions& options = {});
