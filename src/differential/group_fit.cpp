@@ -88,11 +88,15 @@ class GroupNeighbours {
       const float limit = (d + 2 * e) * (1 + 1e-5f);
       const auto end = std::upper_bound(by_centre_.begin(), by_centre_.end(), ordered_key(limit * limit, UINT32_MAX));
       candidates_.clear();
+      float largest = 0;
       for (auto c = by_centre_.begin(); c != end; ++c) {
         const auto j = key_index(*c);
-        if (j != i) candidates_.push_back(ordered_key((points_[j] - p).squaredNorm(), j));
+        if (j == i) continue;
+        const float d2 = (points_[j] - p).squaredNorm();
+        largest = std::max(largest, d2);
+        candidates_.push_back(ordered_key(d2, j));
       }
-      if (candidates_.size() >= k_ && std::sqrt(key_value(smallest(k_))) <= sure) return found_;
+      if (candidates_.size() >= k_ && std::sqrt(key_value(smallest(k_, largest))) <= sure) return found_;
     }
     tree_.knn_of_point(i, k_, found_, distances_);
     return found_;
@@ -100,28 +104,26 @@ class GroupNeighbours {
 
  private:
   /// The k smallest candidates' indices into found_ (in no particular order); returns the k-th smallest key.
-  /// Candidates fall into 256 rings of equal area (equal steps of squared distance), counted in one pass: the rings
-  /// below the one holding the k-th are taken whole and only that ring is sorted out, instead of a selection over
-  /// all of them (a quarter of a noisy CAD part's draw).
-  std::uint64_t smallest(std::size_t k) {
-    float largest = 0;
-    for (const std::uint64_t c : candidates_) largest = std::max(largest, key_value(c));
+  /// `largest` is the largest candidate's squared distance. Candidates fall into 256 rings of equal area (equal steps
+  /// of squared distance), counted in one pass: the rings below the one holding the k-th are taken whole and only
+  /// that ring is sorted out, instead of a selection over all of them (a quarter of a noisy CAD part's draw).
+  std::uint64_t smallest(std::size_t k, float largest) {
     const float per_ring = largest > 0 ? 255.f / largest : 0.f;
-    const auto ring = [&](std::uint64_t c) {
-      const float r = key_value(c) * per_ring;
-      return r >= 0 ? std::min(255, static_cast<int>(r)) : 0;  // NaN (a point at NaN): ring 0, never converted
-    };
+    rings_.resize(candidates_.size());
     std::array<std::uint32_t, 256> count{};
-    for (const std::uint64_t c : candidates_) ++count[static_cast<std::size_t>(ring(c))];
-    int last = 0;
-    std::size_t below = 0;
-    while (below + count[static_cast<std::size_t>(last)] < k) below += count[static_cast<std::size_t>(last++)];
+    for (std::size_t c = 0; c < candidates_.size(); ++c) {
+      const float r = key_value(candidates_[c]) * per_ring;
+      // NaN (a point at NaN): ring 0, never converted.
+      rings_[c] = static_cast<std::uint8_t>(r >= 0 ? std::min(255, static_cast<int>(r)) : 0);
+      ++count[rings_[c]];
+    }
+    std::size_t last = 0, below = 0;
+    while (below + count[last] < k) below += count[last++];
     found_.clear();
     edge_.clear();
-    for (const std::uint64_t c : candidates_) {
-      const int r = ring(c);
-      if (r < last) found_.push_back(key_index(c));
-      if (r == last) edge_.push_back(c);
+    for (std::size_t c = 0; c < candidates_.size(); ++c) {
+      if (rings_[c] < last) found_.push_back(key_index(candidates_[c]));
+      if (rings_[c] == last) edge_.push_back(candidates_[c]);
     }
     const std::size_t need = k - below;
     std::nth_element(edge_.begin(), edge_.begin() + static_cast<std::ptrdiff_t>(need - 1), edge_.end());
@@ -141,6 +143,7 @@ class GroupNeighbours {
   std::vector<std::uint32_t> ball_, found_;
   std::vector<float> distances_;
   std::vector<std::uint64_t> by_centre_, candidates_, edge_;  ///< (squared distance bits, index): one compare orders them
+  std::vector<std::uint8_t> rings_;                           ///< each candidate's ring (smallest)
 };
 
 /// One group's fit, with per-thread buffers.
