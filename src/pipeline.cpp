@@ -1,7 +1,10 @@
 #include "pcsketch/pipeline.h"
 
+#include <tbb/task_group.h>
+
 #include <array>
 #include <chrono>
+#include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "core/progress.h"
@@ -179,6 +182,39 @@ view::ViewResult compute_view(const Prepared& prepared, const view::Camera& came
   return v;
 }
 
+/// `options` with the progress it resolves to (its own, else `progress`) called under `mutex`, so that stages
+/// running at once may share a callback.
+template <class Options>
+Options serialised(Options options, const ProgressFn& progress, std::mutex& mutex) {
+  options = with_progress(std::move(options), progress);
+  if (options.progress)
+    options.progress = [report = std::move(options.progress), &mutex](std::string_view stage, double fraction) {
+      const std::lock_guard lock(mutex);
+      return report(stage, fraction);
+    };
+  return options;
+}
+
+/// The ridge and valley lines, then the borders, into `p` (their rows of p.timings, their warnings); progress is
+/// reported under `reporting`.
+void lines_and_borders(Prepared& p, const neighbourhood::KdTree* tree, const DrawOptions& options,
+                       std::mutex& reporting) {
+  p.features = features::extract_ridge_valley_lines(
+      p.cloud, p.surface, serialised(options.features, options.progress, reporting));
+  // Only the lines read the per-point curvature: 32 B a point freed before the scene and the views (the peak).
+  for (std::vector<float>* v : {&p.surface.curvature.k1, &p.surface.curvature.k2}) *v = std::vector<float>();
+  for (std::vector<Vec3f>* v : {&p.surface.curvature.dir1, &p.surface.curvature.dir2}) *v = std::vector<Vec3f>();
+  p.timings.ridge_valley_points = p.features.timings.detection;
+  p.timings.ridge_valley_connection = p.features.timings.tracing + p.features.timings.joining;
+  p.warnings.insert(p.warnings.end(), p.features.warnings.begin(), p.features.warnings.end());
+
+  const auto start = Clock::now();
+  p.boundary = features::find_boundaries(p.cloud.positions, p.cloud.normals, p.surface.neighbourhoods,
+                                         p.surface.spacing, serialised(options.boundary, options.progress, reporting),
+                                         tree);
+  p.timings.boundary = seconds_since(start);
+}
+
 }  // namespace
 
 nlohmann::json DrawOptions::to_json() const { return options::to_json(*this); }
@@ -212,25 +248,24 @@ Prepared prepare(PointCloud cloud, const DrawOptions& options) {
   p.timings.curvature = st.curvature;
   p.warnings.insert(p.warnings.end(), p.surface.warnings.begin(), p.surface.warnings.end());
 
-  p.features =
-      features::extract_ridge_valley_lines(p.cloud, p.surface, with_progress(options.features, options.progress));
-  // Only the lines read the per-point curvature: 32 B a point freed before the scene and the views (the peak).
-  for (std::vector<float>* v : {&p.surface.curvature.k1, &p.surface.curvature.k2}) *v = std::vector<float>();
-  for (std::vector<Vec3f>* v : {&p.surface.curvature.dir1, &p.surface.curvature.dir2}) *v = std::vector<Vec3f>();
-  p.timings.ridge_valley_points = p.features.timings.detection;
-  p.timings.ridge_valley_connection = p.features.timings.tracing + p.features.timings.joining;
-  p.warnings.insert(p.warnings.end(), p.features.warnings.begin(), p.features.warnings.end());
-
-  auto start = Clock::now();
-  p.boundary = features::find_boundaries(p.cloud.positions, p.cloud.normals, p.surface.neighbourhoods,
-                                         p.surface.spacing, with_progress(options.boundary, options.progress),
-                                         tree ? &*tree : nullptr);
-  p.timings.boundary = seconds_since(start);
-
-  start = Clock::now();
-  p.local_spacing = view::local_spacing(p.surface.neighbourhoods);
-  // The scene of view::build_surface_scene, with the radii kept for shadow splatting.
-  p.scene.emplace(p.cloud.positions, p.cloud.normals, p.local_spacing, with_progress(options.scene, options.progress));
+  // The scene reads only positions, normals and spacing: it is built beside the lines and the borders, so that the
+  // serial parts of Embree's build and theirs each leave the other's core busy. One callback at a time.
+  std::mutex reporting;
+  tbb::task_group beside;
+  beside.run([&] {
+    p.local_spacing = view::local_spacing(p.surface.neighbourhoods);
+    p.scene.emplace(p.cloud.positions, p.cloud.normals, p.local_spacing,
+                    serialised(options.scene, options.progress, reporting));
+  });
+  try {
+    lines_and_borders(p, tree ? &*tree : nullptr, options, reporting);
+  } catch (...) {
+    beside.wait();  // the task writes to `p`
+    throw;
+  }
+  // The scene's row is the wait it adds: its time beside the lines and borders is in their rows.
+  const auto start = Clock::now();
+  beside.wait();
   p.timings.scene = seconds_since(start);
   return p;
 }

@@ -84,7 +84,7 @@ struct Timings {
   double ridge_valley_points = 0;     ///< Table 2 "ridge-valley points extraction" (detection)
   double ridge_valley_connection = 0; ///< Table 2 "ridge-valley points connection" (tracing + joining)
   double boundary = 0;                ///< border points of open scans, traced into lines
-  double scene = 0;                   ///< building the oriented-disc scene
+  double scene = 0;                   ///< building the oriented-disc scene: the wait it adds beside the lines
   double contour_points = 0;          ///< Table 2 "contour points extraction"
   double contour_connection = 0;      ///< Table 2 "contour line connection"
   double visibility = 0;              ///< ray casting of every line

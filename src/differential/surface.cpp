@@ -1,5 +1,7 @@
 #include "pcsketch/differential/surface.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -154,18 +156,22 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
   surface.neighbourhoods = index_neighbourhoods(cloud.positions, tree, t, options);
   thin_scan_lines(cloud, surface, tree, options);
   remove_outliers(cloud, surface, tree, options);
-  surface.spacing = neighbourhood::mean_spacing(surface.neighbourhoods);
-
   bool estimate = options.recompute_normals || !cloud.has_normals();
   if (!estimate && !normalise(cloud.normals)) {
     surface.warnings.push_back("surface analysis: the file has zero or non-finite normals; all normals recomputed");
     estimate = true;
   }
   std::optional<NormalResult> pca;
-  if (estimate)
-    pca = timed(t.normals, [&] {
-      return estimate_normals(cloud.positions, surface.neighbourhoods, with_progress(options.normals, options.progress));
-    });
+  // The spacing's select and sum are serial (their order sets the sum's last bits): beside the normals, which do
+  // not read it.
+  tbb::parallel_invoke([&] { surface.spacing = neighbourhood::mean_spacing(surface.neighbourhoods); },
+                       [&] {
+                         if (estimate)
+                           pca = timed(t.normals, [&] {
+                             return estimate_normals(cloud.positions, surface.neighbourhoods,
+                                                     with_progress(options.normals, options.progress));
+                           });
+                       });
   // The curvature fits the raw points: denoising leaves its error correlated over a few h, which a quadric sees as
   // shape; the raw noise is independent, and the fit widens until it averages out.
   // Its frames are the raw points' normals too: at a crease they bisect the two faces, where the height field of a

@@ -3,6 +3,8 @@
 // position, then the first in the file). A flat open-addressing table (linear probing, grown at half load): one
 // cache miss per point where std::unordered_map allocates a node per cell, 10x slower on 5M cells.
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -55,6 +57,9 @@ class CellTable {
   }
 
   std::size_t size() const { return size_; }
+
+  /// Which of 2^bits tables owns `key` (CellTables): the hash's top bits, while a table's slots use its low ones.
+  static std::size_t part_of(const Key& key, int bits) { return static_cast<std::size_t>(hash(key) >> (64 - bits)); }
 
   /// The representatives in file order: positions, and normals / colours / intensity when the table keeps them; returns
   /// their file indices (ascending), for the formats that read more of the kept points back from their records.
@@ -136,6 +141,58 @@ class CellTable {
   std::vector<Rgb8> colors_of_;
   std::vector<float> intensity_of_;
   std::size_t size_ = 0;
+};
+
+/// CellTables side by side, each owning the cells whose hash has its top bits, so that the offers of a batch go to
+/// them in parallel. The cells kept are one table's: a cell's representative is the least of its offers under one
+/// total order (distance, position, unique file index), whatever order they come in.
+class CellTables {
+ public:
+  static constexpr int kPartBits = 3;
+  static constexpr std::size_t kParts = std::size_t{1} << kPartBits;
+
+  CellTables(bool normals, bool colors, bool intensity) {
+    for (std::size_t p = 0; p < kParts; ++p) parts_.emplace_back(normals, colors, intensity);
+  }
+
+  CellTable& part(std::size_t p) { return parts_[p]; }
+  static std::size_t part_of(const CellTable::Key& key) { return CellTable::part_of(key, kPartBits); }
+
+  /// As CellTable::take, over all the tables: each takes its own in parallel, then they are merged by file index.
+  std::vector<std::uint64_t> take(std::vector<Vec3f>& positions, std::vector<Vec3f>& normals, std::vector<Rgb8>& colors,
+                                  std::vector<float>* intensity = nullptr) const {
+    struct Taken {
+      std::vector<Vec3f> positions, normals;
+      std::vector<Rgb8> colors;
+      std::vector<float> intensity;
+      std::vector<std::uint64_t> indices;
+    };
+    std::vector<Taken> taken(kParts);
+    tbb::parallel_for(std::size_t{0}, kParts, [&](std::size_t p) {
+      Taken& t = taken[p];
+      t.indices = parts_[p].take(t.positions, t.normals, t.colors, &t.intensity);
+    });
+    std::vector<std::uint64_t> indices;
+    std::array<std::size_t, kParts> at{};
+    for (;;) {
+      std::size_t best = kParts;
+      for (std::size_t p = 0; p < kParts; ++p)
+        if (at[p] < taken[p].indices.size() &&
+            (best == kParts || taken[p].indices[at[p]] < taken[best].indices[at[best]]))
+          best = p;
+      if (best == kParts) return indices;
+      const Taken& t = taken[best];
+      const std::size_t i = at[best]++;
+      indices.push_back(t.indices[i]);
+      positions.push_back(t.positions[i]);
+      if (!t.normals.empty()) normals.push_back(t.normals[i]);
+      if (!t.colors.empty()) colors.push_back(t.colors[i]);
+      if (intensity != nullptr && !t.intensity.empty()) intensity->push_back(t.intensity[i]);
+    }
+  }
+
+ private:
+  std::vector<CellTable> parts_;
 };
 
 }  // namespace pcsketch::io::detail

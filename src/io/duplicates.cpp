@@ -4,8 +4,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
+#include <utility>
 
 #include "raw_cloud.h"
 
@@ -41,19 +43,39 @@ struct Buckets {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i) h[i] = hash_position(positions[i]);
     });
-    for (const std::uint64_t v : h) ++start[(v >> (64 - kBucketBits)) + 1];
-    for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+    // A counting sort in parallel: each slice of the points counts its buckets, then writes its run of each bucket
+    // after the runs of the slices before it, so a bucket holds its points in index order.
+    const std::size_t slices = std::min<std::size_t>(64, (n + kSlicePoints - 1) / kSlicePoints);
+    constexpr std::size_t kBuckets = std::size_t{1} << kBucketBits;
+    std::vector<std::uint32_t> next(slices * kBuckets, 0);  // per slice and bucket: its count, then where it writes
+    const auto slice_range = [&](std::size_t s) { return std::pair{s * n / slices, (s + 1) * n / slices}; };
+    tbb::parallel_for(std::size_t{0}, slices, [&](std::size_t s) {
+      const auto [first, last] = slice_range(s);
+      for (std::size_t i = first; i < last; ++i) ++next[s * kBuckets + bucket_of(h[i])];
+    });
+    for (std::size_t b = 0, at = 0; b < kBuckets; ++b) {
+      start[b] = static_cast<std::uint32_t>(at);
+      for (std::size_t s = 0; s < slices; ++s)
+        at += std::exchange(next[s * kBuckets + b], static_cast<std::uint32_t>(at));
+    }
+    start[kBuckets] = static_cast<std::uint32_t>(n);
     index.resize(n);
     position.resize(n);
     hash.resize(n);
-    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t at = next[h[i] >> (64 - kBucketBits)]++;
-      index[at] = static_cast<std::uint32_t>(i);
-      position[at] = positions[i];
-      hash[at] = h[i];
-    }
+    tbb::parallel_for(std::size_t{0}, slices, [&](std::size_t s) {
+      const auto [first, last] = slice_range(s);
+      for (std::size_t i = first; i < last; ++i) {
+        const std::uint32_t at = next[s * kBuckets + bucket_of(h[i])]++;
+        index[at] = static_cast<std::uint32_t>(i);
+        position[at] = positions[i];
+        hash[at] = h[i];
+      }
+    });
   }
+
+ private:
+  static constexpr std::size_t kSlicePoints = 16384;
+  static std::size_t bucket_of(std::uint64_t hash) { return hash >> (64 - kBucketBits); }
 };
 
 /// Marks in `copy` every point of bucket b equal to an earlier one: open addressing over the bucket's first copies
@@ -89,6 +111,7 @@ std::size_t collapse_duplicates(RawCloud& raw) {
     const Buckets buckets(raw.positions);
     tbb::parallel_for(std::size_t{0}, buckets.start.size() - 1, [&](std::size_t b) { mark_copies(buckets, b, copy); });
   }
+  if (std::find(copy.begin(), copy.end(), std::uint8_t{1}) == copy.end()) return 0;
   std::size_t kept = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (copy[i]) continue;

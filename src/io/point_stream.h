@@ -2,7 +2,10 @@
 // Streaming readers: a format hands its points over in chunks, in file order, without building a RawCloud; the
 // consumer (src/io/stream_read.cpp) keeps what it needs. Memory then grows with what is kept, not with the file.
 
+#include <tbb/task_group.h>
+
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -76,20 +79,40 @@ template <class Read, class EndByte>
 void stream_chunks(const Source& src, std::uint64_t count, std::size_t chunk_points, bool has_normals, bool has_colors,
                    PointSink& sink, Read&& read, EndByte&& end_byte) {
   chunk_points = std::max<std::size_t>(chunk_points, 1);
-  std::vector<Vec3d> positions(chunk_points);
-  std::vector<Vec3f> normals(has_normals ? chunk_points : 0);
-  std::vector<Rgb8> colors(has_colors ? chunk_points : 0);
-  std::size_t released = 0;
-  for (std::uint64_t first = 0; first < count; first += chunk_points) {
-    const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(chunk_points, count - first));
-    for (std::size_t i = 0; i < n; ++i)
-      read(first + i, positions[i], has_normals ? &normals[i] : nullptr, has_colors ? &colors[i] : nullptr);
-    sink.points({.first = first,
-                 .positions = std::span(positions).first(n),
-                 .normals = std::span(normals).first(has_normals ? n : 0),
-                 .colors = std::span(colors).first(has_colors ? n : 0)});
-    if (src.mapped) released = release_pages(src.bytes, released, end_byte(first + n));
+  // Two sets of buffers: a chunk is decoded (serially) while the sink takes the one before, one chunk at a time.
+  struct Buffers {
+    std::vector<Vec3d> positions;
+    std::vector<Vec3f> normals;
+    std::vector<Rgb8> colors;
+  };
+  std::array<Buffers, 2> buffers;
+  for (Buffers& b : buffers) {
+    b.positions.resize(chunk_points);
+    b.normals.resize(has_normals ? chunk_points : 0);
+    b.colors.resize(has_colors ? chunk_points : 0);
   }
+  std::size_t released = 0;
+  tbb::task_group sinking;
+  try {
+    for (std::uint64_t first = 0; first < count; first += chunk_points) {
+      Buffers& b = buffers[first / chunk_points % 2];
+      const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(chunk_points, count - first));
+      for (std::size_t i = 0; i < n; ++i)
+        read(first + i, b.positions[i], has_normals ? &b.normals[i] : nullptr, has_colors ? &b.colors[i] : nullptr);
+      if (src.mapped) released = release_pages(src.bytes, released, end_byte(first + n));
+      sinking.wait();  // the chunk before is taken: its buffers are free for the next
+      sinking.run([&sink, &b, first, n] {
+        sink.points({.first = first,
+                     .positions = std::span(b.positions).first(n),
+                     .normals = std::span(b.normals).first(b.normals.empty() ? 0 : n),
+                     .colors = std::span(b.colors).first(b.colors.empty() ? 0 : n)});
+      });
+    }
+  } catch (...) {
+    sinking.wait();  // the sink's own exception, from the chunk before, wins
+    throw;
+  }
+  sinking.wait();
 }
 
 /// At most this many positions (every n-th point) are sampled for the robust box of the resolution rule.

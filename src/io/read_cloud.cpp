@@ -1,10 +1,14 @@
 #include "pcsketch/io/read_cloud.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 
 #include "columns.h"
 #include "mapped_file.h"
@@ -100,14 +104,22 @@ Vec3d choose_origin(const std::vector<Vec3d>& positions, const ReadOptions& opti
 
 std::vector<Vec3f> relative(const std::vector<Vec3d>& positions, const Vec3d& origin, const Source& source) {
   std::vector<Vec3f> out(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    out[i] = (positions[i] - origin).cast<float>();
-    // 1e39 is a finite double but an infinite float.
-    if (!out[i].allFinite())
-      source.fail("point " + std::to_string(i) + " lies " + number((positions[i] - origin).cwiseAbs().maxCoeff()) +
-                  " units from the origin, beyond float range");
-  }
-  return out;
+  const bool finite = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, positions.size(), 16384), true,
+      [&](const tbb::blocked_range<std::size_t>& r, bool all) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) {
+          out[i] = (positions[i] - origin).cast<float>();
+          all = all && out[i].allFinite();
+        }
+        return all;
+      },
+      std::logical_and<>());
+  if (finite) return out;
+  // 1e39 is a finite double but an infinite float: the first such point is named.
+  const std::size_t i = static_cast<std::size_t>(
+      std::find_if(out.begin(), out.end(), [](const Vec3f& p) { return !p.allFinite(); }) - out.begin());
+  source.fail("point " + std::to_string(i) + " lies " + number((positions[i] - origin).cwiseAbs().maxCoeff()) +
+              " units from the origin, beyond float range");
 }
 
 // Keeps the points `keep(i)` says, in place, with every per-point array aligned; returns how many were kept.
@@ -132,6 +144,15 @@ std::size_t compact(RawCloud& raw, Keep keep) {
 void drop_non_finite(RawCloud& raw, ReadResult& result, const Source& source) {
   const std::size_t all = raw.positions.size();
   if (all == 0) source.fail(raw.format + ": the file holds no points");
+  // Checked in parallel first: most files have no such point, and then nothing moves.
+  const bool finite = tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, all, 16384), true,
+      [&](const tbb::blocked_range<std::size_t>& r, bool ok) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i) ok = ok && raw.positions[i].allFinite();
+        return ok;
+      },
+      std::logical_and<>());
+  if (finite) return;
   const std::size_t kept = compact(raw, [&](std::size_t i) { return raw.positions[i].allFinite(); });
   result.dropped_non_finite = all - kept;
   if (kept == 0) source.fail(raw.format + ": all " + std::to_string(all) + " points have a NaN or infinite coordinate");

@@ -5,6 +5,9 @@
 // followed by decimate().
 
 #include <sys/mman.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -84,31 +87,33 @@ class Voxeliser final : public PointSink {
         report_(report) {}
 
   void points(const PointChunk& c) override {
-    // In batches: keys first, their slots prefetched, then the offers.
-    constexpr std::size_t kBatch = 32;
-    std::array<Candidate, kBatch> batch;
-    for (std::size_t start = 0; start < c.positions.size(); start += kBatch) {
-      const std::size_t end = std::min(start + kBatch, c.positions.size());
-      std::size_t n = 0;
-      for (std::size_t i = start; i < end; ++i)
-        if (candidate(c, i, batch[n])) batch[n++].index = c.first + i;
-      cells.reserve_for(n);
-      for (std::size_t k = 0; k < n; ++k) cells.prefetch(batch[k].key);
-      for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t i = static_cast<std::size_t>(batch[k].index - c.first);
-        const Vec3f normal = c.normals.empty() ? Vec3f::Zero() : c.normals[i];
-        if (!c.normals.empty()) {
-          bad_normals += !(normal.allFinite() && normal.norm() > 0.f);
-          unit_normals += std::abs(normal.norm() - 1.f) <= kUnitTolerance;
-        }
-        cells.offer(batch[k].key, batch[k].distance2, batch[k].position, batch[k].index, normal,
-                    c.colors.empty() ? Rgb8{} : c.colors[i], c.intensity.empty() ? 0.f : c.intensity[i]);
-      }
-    }
-    report_(std::min(1.0, 0.5 + 0.5 * static_cast<double>(c.first + c.positions.size()) / static_cast<double>(count_)));
+    const std::size_t n = c.positions.size();
+    candidates_.resize(n);
+    part_.resize(n);
+    // Keys first, in parallel, with the normals' counts (integer sums: the same in any order).
+    using Counts = std::pair<std::uint64_t, std::uint64_t>;  // bad, unit
+    const Counts counts = tbb::parallel_reduce(
+        tbb::blocked_range<std::size_t>(0, n, 4096), Counts{0, 0},
+        [&](const tbb::blocked_range<std::size_t>& r, Counts sum) {
+          for (std::size_t i = r.begin(); i != r.end(); ++i) {
+            part_[i] = kNoPart;
+            if (!candidate(c, i, candidates_[i])) continue;
+            part_[i] = static_cast<std::uint8_t>(CellTables::part_of(candidates_[i].key));
+            if (c.normals.empty()) continue;
+            const Vec3f& normal = c.normals[i];
+            sum.first += !(normal.allFinite() && normal.norm() > 0.f);
+            sum.second += std::abs(normal.norm() - 1.f) <= kUnitTolerance;
+          }
+          return sum;
+        },
+        [](const Counts& a, const Counts& b) { return Counts{a.first + b.first, a.second + b.second}; });
+    bad_normals += counts.first;
+    unit_normals += counts.second;
+    tbb::parallel_for(std::size_t{0}, CellTables::kParts, [&](std::size_t p) { offer_part(c, p); });
+    report_(std::min(1.0, 0.5 + 0.5 * static_cast<double>(c.first + n) / static_cast<double>(count_)));
   }
 
-  CellTable cells;
+  CellTables cells;
   std::uint64_t bad_normals = 0, unit_normals = 0;
 
  private:
@@ -116,8 +121,28 @@ class Voxeliser final : public PointSink {
     CellTable::Key key;
     double distance2;
     std::array<float, 3> position;
-    std::uint64_t index;
   };
+  static constexpr std::uint8_t kNoPart = 0xff;
+
+  /// Table p's offers of the chunk, in file order and in batches: keys' slots prefetched, then the offers.
+  void offer_part(const PointChunk& c, std::size_t p) {
+    constexpr std::size_t kBatch = 32;
+    std::array<std::uint32_t, kBatch> batch;
+    CellTable& table = cells.part(p);
+    for (std::size_t i = 0; i < part_.size();) {
+      std::size_t m = 0;
+      for (; i < part_.size() && m < kBatch; ++i)
+        if (part_[i] == p) batch[m++] = static_cast<std::uint32_t>(i);
+      table.reserve_for(m);
+      for (std::size_t k = 0; k < m; ++k) table.prefetch(candidates_[batch[k]].key);
+      for (std::size_t k = 0; k < m; ++k) {
+        const std::uint32_t j = batch[k];
+        const Candidate& a = candidates_[j];
+        table.offer(a.key, a.distance2, a.position, c.first + j, c.normals.empty() ? Vec3f::Zero() : c.normals[j],
+                    c.colors.empty() ? Rgb8{} : c.colors[j], c.intensity.empty() ? 0.f : c.intensity[j]);
+      }
+    }
+  }
 
   // decimate()'s cell and distance for `p`, on the float position the whole read would store; false: not kept.
   bool candidate(const PointChunk& c, std::size_t i, Candidate& out) const {
@@ -137,6 +162,8 @@ class Voxeliser final : public PointSink {
   double cell_;
   std::uint64_t count_;
   const ProgressReporter& report_;
+  std::vector<Candidate> candidates_;  ///< per point of the chunk
+  std::vector<std::uint8_t> part_;     ///< per point of the chunk: its table, or kNoPart if not kept
 };
 
 // check_normals() of the in-memory read, from pass 2's counts over the `kept` points.

@@ -5,7 +5,11 @@
 #include <sys/stat.h>
 
 #include <cstring>
+#include <random>
+#include <set>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "io_test_util.h"
 #include "pcsketch/core/error.h"
@@ -97,6 +101,31 @@ TEST(HostileInput, ExactDuplicatesAreCollapsedAtLoad) {
   EXPECT_NE(r.warnings[0].find("100000 points repeat an earlier point"), std::string::npos) << r.warnings[0];
   const ReadResult kept = read_point_cloud_from_memory(text, "d.xyz", {.collapse_duplicates = false});
   EXPECT_EQ(kept.cloud.size(), 100004u);
+}
+
+TEST(HostileInput, DuplicatesAmongManyPointsKeepEachFirstCopyInOrder) {
+  // Enough points for the parallel bucketing to split them into slices; the simple rule is a set of lines seen.
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> coordinate(0, 40);
+  std::vector<std::string> lines;
+  for (int i = 0; i < 60000; ++i)
+    lines.push_back(i % 4 == 3 ? lines[rng() % lines.size()]
+                               : std::to_string(coordinate(rng)) + " " + std::to_string(coordinate(rng)) + " " +
+                                     std::to_string(coordinate(rng) + 1000 * (i % 7)));
+  std::string text;
+  std::set<std::string> seen;
+  std::vector<Vec3f> first;
+  for (const std::string& line : lines) {
+    text += line + "\n";
+    if (!seen.insert(line).second) continue;
+    std::istringstream in(line);
+    Vec3f p;
+    in >> p.x() >> p.y() >> p.z();
+    first.push_back(p);
+  }
+  const ReadResult r = read_point_cloud_from_memory(text, "d.xyz", {.recentre = false});
+  EXPECT_EQ(r.duplicates, lines.size() - first.size());
+  EXPECT_EQ(r.cloud.positions, first);
 }
 
 TEST(HostileInput, ScalesFloatCannotHoldAreRefusedWithAReason) {
