@@ -66,9 +66,22 @@ double quantile(std::vector<double>& values, double fraction) {
   return *at;
 }
 
+/// Every stride-th point of n, at most about `most` of them, spread over the point order.
+struct Sampling {
+  std::size_t stride, count;
+};
+Sampling sampling(std::size_t n, std::size_t most) {
+  const std::size_t stride = std::max<std::size_t>(1, n / most);
+  return {stride, (n + stride - 1) / stride};
+}
+
 /// Neighbour counts at doubling scales, whose distances give the cloud's local dimension between them.
 constexpr std::array<std::size_t, 7> kScales = {4, 8, 16, 32, 64, 128, 256};
 constexpr std::size_t kPairs = kScales.size() - 1;
+/// The scale pairs where noisy lines are one-dimensional: 8→16, 16→32 and 32→64 neighbours.
+constexpr std::size_t kFirstLinePair = 1, kLastLinePair = 3;
+/// Beyond the lines' spacing the cloud is a surface again: its median dimension rises past this.
+constexpr double kSurfaceDimension = 1.8;
 /// Points whose dimension profile is measured for noisy lines (medians over them decide).
 constexpr std::size_t kProfileSamples = 256;
 
@@ -93,7 +106,8 @@ ScanLines noisy_lines(const std::vector<Vec3f>& points, const neighbourhood::KdT
   const std::size_t n = points.size();
   ScanLines result;
   if (n <= kScales.back() || !(options.noisy_dimension > 0)) return result;
-  const std::size_t stride = std::max<std::size_t>(1, n / kProfileSamples), samples = (n + stride - 1) / stride;
+  const Sampling sampled = sampling(n, kProfileSamples);
+  const std::size_t stride = sampled.stride, samples = sampled.count;  // lambdas capture variables, not bindings
   std::vector<Profile> profiles(samples);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples, 16), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<std::uint32_t> found;
@@ -109,13 +123,16 @@ ScanLines noisy_lines(const std::vector<Vec3f>& points, const neighbourhood::KdT
     for (std::size_t s = 0; s < samples; ++s) values[s] = dimension(profiles[s], j);
     median[j] = quantile(values, 0.5);
   }
-  const std::size_t line = static_cast<std::size_t>(std::min_element(median.begin() + 1, median.begin() + 4) - median.begin());
+  const auto first = median.begin() + kFirstLinePair, last = median.begin() + kLastLinePair;
+  const std::size_t line = static_cast<std::size_t>(std::min_element(first, last + 1) - median.begin());
   const double beyond = *std::max_element(median.begin() + static_cast<std::ptrdiff_t>(line) + 1, median.end());
-  if (!(median[line] <= options.noisy_dimension) || !(beyond >= 1.8)) return result;
+  if (!(median[line] <= options.noisy_dimension) || !(beyond >= kSurfaceDimension)) return result;
   std::vector<double> spacing, anisotropy;
   std::size_t on_lines = 0;
   for (const Profile& p : profiles) {
-    on_lines += std::min({dimension(p, 1), dimension(p, 2), dimension(p, 3)}) <= options.noisy_dimension;
+    double lowest = dimension(p, kFirstLinePair);
+    for (std::size_t j = kFirstLinePair + 1; j <= kLastLinePair; ++j) lowest = std::min(lowest, dimension(p, j));
+    on_lines += lowest <= options.noisy_dimension;
     const double along = static_cast<double>(kScales[line + 1]) / (2.0 * p[line + 1]);
     const double area = static_cast<double>(kScales.back()) / (std::numbers::pi * p.back() * p.back());
     if (!(along > 0 && std::isfinite(along) && area > 0 && std::isfinite(area))) continue;
@@ -139,7 +156,8 @@ ScanLines find_scan_lines(const std::vector<Vec3f>& points, const neighbourhood:
   ScanLines result;
   if (!options.enabled || n < 2 * kAcross || neighbourhoods.k < kLineNeighbours || options.max_samples == 0)
     return result;
-  const std::size_t stride = std::max<std::size_t>(1, n / options.max_samples), samples = (n + stride - 1) / stride;
+  const Sampling sampled = sampling(n, options.max_samples);
+  const std::size_t stride = sampled.stride, samples = sampled.count;  // lambdas capture variables, not bindings
   std::vector<double> gaps(samples), nearest(samples);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples, 64), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<std::uint32_t> found;

@@ -223,19 +223,21 @@ void KdTree::radius_any_order(const Vec3f& query, float radius, std::vector<std:
 
 void KdTree::knn_of_every_point(std::size_t k, std::uint32_t* indices, float* distances,
                                 const ProgressFn& progress) const {
-  if (k == 0 || k >= size())
-    throw Error("kd-tree: " + std::to_string(k) + " neighbours of each of " + std::to_string(size()) + " points");
-  if (!impl_->grid) impl_->grid = std::make_unique<detail::GridKnn>(impl_->adaptor.points, k);
   // The grid's fill has already failed on the rows it leaves: the tree answers them.
+  make_grid(k);
   fill_rows(impl_->grid->fill(k, indices, distances, progress), k, indices, distances, false);
 }
 
 void KdTree::knn_of_rows(const std::vector<std::uint32_t>& rows, std::size_t k, std::uint32_t* indices,
                          float* distances) const {
-  if (k == 0 || k >= size())
-    throw Error("kd-tree: " + std::to_string(k) + " neighbours of points of a cloud of " + std::to_string(size()));
-  if (!impl_->grid) impl_->grid = std::make_unique<detail::GridKnn>(impl_->adaptor.points, k);
+  make_grid(k);
   fill_rows(rows, k, indices, distances, true);
+}
+
+void KdTree::make_grid(std::size_t k) const {
+  if (k == 0 || k >= size())
+    throw Error("kd-tree: " + std::to_string(k) + " neighbours of each of " + std::to_string(size()) + " points");
+  if (!impl_->grid) impl_->grid = std::make_unique<detail::GridKnn>(impl_->adaptor.points, k);
 }
 
 void KdTree::fill_rows(const std::vector<std::uint32_t>& rows, std::size_t k, std::uint32_t* indices,

@@ -47,7 +47,8 @@ Neighbourhoods neighbourhoods_after_removal(const Neighbourhoods& before, const 
                                            const std::vector<Vec3f>& points, std::optional<KdTree>& tree,
                                            const NeighbourhoodOptions& options) {
   const std::size_t old_n = removed.size();
-  if (before.size() != old_n || static_cast<std::size_t>(std::count(removed.begin(), removed.end(), 0)) != points.size())
+  const auto left = static_cast<std::size_t>(std::count(removed.begin(), removed.end(), 0));
+  if (before.size() != old_n || left != points.size())
     throw Error("neighbourhoods: " + std::to_string(removed.size()) + " removal flags for " +
                 std::to_string(before.size()) + " lists and " + std::to_string(points.size()) + " points left");
   Neighbourhoods result = sized(points, options);

@@ -56,6 +56,8 @@ class KdTree {
   /// knn_of_point from the tree alone.
   void tree_knn_of_point(std::size_t i, std::size_t k, std::vector<std::uint32_t>& indices,
                          std::vector<float>& distances) const;
+  /// Makes the grid of knn_of_every_point for rows of k neighbours if there is none yet; checks 0 < k < size().
+  void make_grid(std::size_t k) const;
   /// Rows `rows` of knn_of_every_point's output, from knn_of_point (`grid_first`) or from the tree alone.
   void fill_rows(const std::vector<std::uint32_t>& rows, std::size_t k, std::uint32_t* indices, float* distances,
                  bool grid_first) const;
