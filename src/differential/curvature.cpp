@@ -26,6 +26,10 @@ constexpr double kPi = 3.14159265358979323846;
 /// Neighbours of the smaller fit that separates noise from shape misfit (the point itself makes 6 + 6 dof).
 constexpr std::size_t kInnerFit = 11;
 
+/// What a fit computes: the residual feeds the noise estimates, the shape the curvature (a wide fit needs no
+/// residual: skipping its pass over the neighbours is a tenth of a noisy cloud's curvature time).
+enum class Want { residual, shape, both };
+
 /// Principal curvatures at one point (our sign convention) and the residual of the fit.
 struct PointFit {
   float k1 = 0, k2 = 0;
@@ -35,9 +39,9 @@ struct PointFit {
 
 /// Least-squares quadric height field over local[0..size) (the point and its first size − 1 neighbours in the
 /// tangent frame (u, v, n) of its normal; `spread` is Σ x² + y² over the neighbours); principal curvatures from the
-/// shape operator of the fitted graph at the origin, unless only the residual is wanted (`shape` false).
+/// shape operator of the fitted graph at the origin, and the fit's residual, as `want` asks.
 PointFit fit_quadric(const Vec3d* local, std::size_t size, double spread, const Vec3d& n, const Vec3d& u,
-                     const Vec3d& v, bool shape) {
+                     const Vec3d& v, Want want) {
   PointFit fit;
   const std::size_t count = size - 1;
   // Tangent coordinates scaled to unit RMS radius: keeps the normal equations well conditioned at any model scale.
@@ -73,11 +77,13 @@ PointFit fit_quadric(const Vec3d* local, std::size_t size, double spread, const 
     return c[0] * x * x + c[1] * x * y + c[2] * y * y + c[3] * x + c[4] * y + c[5];
   };
 
-  double squares = 0;
-  for (const Vec3d& q : std::span(local, size)) squares += std::pow(q.z() - model(q), 2);
-  const double dof = size > 6 ? static_cast<double>(size - 6) : 1.0;
-  fit.residual = std::sqrt(squares / dof);
-  if (!shape) return fit;
+  if (want != Want::shape) {
+    double squares = 0;
+    for (const Vec3d& q : std::span(local, size)) squares += std::pow(q.z() - model(q), 2);
+    const double dof = size > 6 ? static_cast<double>(size - 6) : 1.0;
+    fit.residual = std::sqrt(squares / dof);
+  }
+  if (want == Want::residual) return fit;
 
   // Graph z = h(x, y): derivatives at the origin in model units.
   const double s2 = scale * scale;
@@ -95,7 +101,7 @@ PointFit fit_quadric(const Vec3d* local, std::size_t size, double spread, const 
 /// The quadric fit (fit_quadric) over point i and its first `count` neighbours; with `inner`, also the residual of
 /// the fit over its first kInnerFit ≤ count neighbours, from the same tangent-frame coordinates.
 PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f& normal,
-                   const std::uint32_t* neighbours, std::size_t count, double* inner) {
+                   const std::uint32_t* neighbours, std::size_t count, double* inner, Want want) {
   if (inner) *inner = 0;
   const Vec3d n = normal.cast<double>();
   if (!(n.squaredNorm() > 0.5)) return {};  // no normal: no frame
@@ -114,8 +120,8 @@ PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f&
     if (m + 1 == kInnerFit) inner_spread = spread;
   }
   if (inner && count >= kInnerFit)
-    *inner = fit_quadric(local.data(), kInnerFit + 1, inner_spread, n, u, v, false).residual;
-  return fit_quadric(local.data(), count + 1, spread, n, u, v, true);
+    *inner = fit_quadric(local.data(), kInnerFit + 1, inner_spread, n, u, v, Want::residual).residual;
+  return fit_quadric(local.data(), count + 1, spread, n, u, v, want);
 }
 
 /// Median of χ²_ν/ν, ≈ (1 − 2/(9ν))³ (Wilson–Hilferty): the median squared residual of a fit with ν degrees of
@@ -236,7 +242,7 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
       for (std::size_t i = begin; i < end; ++i) {
         const bool sampled = !inner_residual.empty() && i % stride == 0;
         store(i, fit_point(points, i, normals[i], neighbourhoods.indices.data() + i * neighbourhoods.k, k,
-                           sampled ? &inner_residual[i / stride] : nullptr));
+                           sampled ? &inner_residual[i / stride] : nullptr, Want::both));
       }
     });
   };
@@ -245,7 +251,7 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
     result.fit_neighbours = k;
     const neighbourhood::KdTree& tree = given_tree ? *given_tree : own_tree.emplace(points);
     const detail::PointFitFn point_fit = [&](std::size_t i, const std::uint32_t* nb, std::size_t count) {
-      store(i, fit_point(points, i, normals[i], nb, count, nullptr));
+      store(i, fit_point(points, i, normals[i], nb, count, nullptr, Want::shape));
     };
     result.point_fits = detail::fit_groups(
         points, normals, neighbourhoods, tree,
@@ -304,7 +310,8 @@ float estimate_noise(const std::vector<Vec3f>& points, const std::vector<Vec3f>&
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       const std::size_t i = j * stride;
       const std::uint32_t* nb = neighbourhoods.indices.data() + i * k;
-      residual[j] = fit_point(points, i, normals[i], nb, k, inner.empty() ? nullptr : &inner[j]).residual;
+      double* inner_fit = inner.empty() ? nullptr : &inner[j];
+      residual[j] = fit_point(points, i, normals[i], nb, k, inner_fit, Want::residual).residual;
     }
   });
   return static_cast<float>(noise_estimate(residual, inner, 1, k));
@@ -352,8 +359,9 @@ float noise_share(const std::vector<Vec3f>& points, const std::vector<Vec3f>& no
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       const std::size_t i = j * stride;
       if (!wide_neighbours(points, neighbourhoods, i, ring, keys, wide)) continue;
-      outer[j] = fit_point(points, i, normals[i], neighbourhoods.indices.data() + i * k, k, nullptr).residual;
-      wider[j] = fit_point(points, i, normals[i], wide.data(), kWideFit, nullptr).residual;
+      const std::uint32_t* nb = neighbourhoods.indices.data() + i * k;
+      outer[j] = fit_point(points, i, normals[i], nb, k, nullptr, Want::residual).residual;
+      wider[j] = fit_point(points, i, normals[i], wide.data(), kWideFit, nullptr, Want::residual).residual;
     }
   });
   std::erase(outer, -1.0);
