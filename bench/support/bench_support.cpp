@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "pcsketch/core/allocator.h"
 #include "pcsketch/io/read_cloud.h"
 #include "pcsketch/io/sample_mesh.h"
 
@@ -150,6 +151,7 @@ Table per_point_table(const std::string& first, const std::vector<std::string>& 
 }
 
 int bench_main(const char* name, int argc, char** argv, int (*run)(int, char**)) {
+  keep_freed_memory();  // as the CLI does, so the benches time what a user's draw costs
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {

@@ -2,6 +2,7 @@
 // Umbrella header: the whole library. Most programs need only prepare()/draw_view() (pipeline.h), a reader
 // (io/read_cloud.h) and a writer (render/write.h).
 
+#include "pcsketch/core/allocator.h"
 #include "pcsketch/core/drawing.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/core/point_cloud.h"
