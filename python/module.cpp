@@ -291,6 +291,9 @@ PYBIND11_MODULE(pcsketch, m) {
         "Analyses an (N, 3) array of points (normals optional): neighbourhoods, normals, curvature, ridge and valley "
         "lines. Keyword options: the flags of `pcsketch draw` (neighbours=24, alpha=0.15, no_denoise=True, ...); "
         "view options given here become draw()'s defaults.");
+  m.def("keep_freed_memory", &keep_freed_memory,
+        "For a script that draws large clouds: glibc's malloc keeps the memory a stage frees for the next one "
+        "instead of returning it to the kernel (as the pcsketch command does). Process-wide; call it once at start.");
 
   bind_results(m);
 }

@@ -95,3 +95,9 @@ def test_arrays_give_the_drawing_the_cli_gives_for_the_file(tmp_path):
     subprocess.run([os.environ["PCSKETCH_CLI"], "-q", "draw", BUNNY, "--size", "200x200", "--azimuth", "-35",
                     "--elevation", "15", "-o", str(svg)], check=True)
     assert drawing.svg() == svg.read_text()
+
+
+def test_keep_freed_memory_leaves_drawings_unchanged(prepared):
+    before = prepared.draw().svg()
+    pcsketch.keep_freed_memory()
+    assert prepared.draw().svg() == before
