@@ -11,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <iostream>
 #include <random>
 
@@ -70,7 +71,7 @@ Measured measure(const std::string& mesh, std::size_t n, double sigma, double ou
   std::optional<neighbourhood::KdTree> built;
   const neighbourhood::Neighbourhoods both = neighbourhood::index_neighbourhoods(points, built, {.k = 16});
   m.together = clock.seconds();
-  m.equal = grid.indices == tree_rows && both.indices == tree_rows;
+  m.equal = std::ranges::equal(grid.indices, tree_rows) && std::ranges::equal(both.indices, tree_rows);
   return m;
 }
 

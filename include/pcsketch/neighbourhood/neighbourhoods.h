@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "pcsketch/core/buffer.h"
 #include "pcsketch/core/point_cloud.h"
 #include "pcsketch/core/report.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
@@ -27,8 +28,8 @@ struct NeighbourhoodOptions {
 /// A cloud with fewer than k+1 points has k = size-1.
 struct Neighbourhoods {
   std::size_t k = 0;
-  std::vector<std::uint32_t> indices;  ///< #P*k
-  std::vector<float> distances;        ///< #P*k, true distances, ascending per point
+  Buffer<std::uint32_t> indices;  ///< #P*k (a std::vector that sizes without zeroing: core/buffer.h)
+  Buffer<float> distances;        ///< #P*k, true distances, ascending per point
 
   std::size_t size() const { return k == 0 ? 0 : indices.size() / k; }
   std::span<const std::uint32_t> of(std::size_t i) const { return {indices.data() + i * k, k}; }
