@@ -5,9 +5,11 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -178,8 +180,24 @@ void apply_config(DrawArgs& args, const CLI::App& cmd) {
   c.elevation_deg.reset();
 }
 
+/// A LAS file is z-up (its format's convention): unless --up or --config set up, it is +z, and with no other view
+/// flag the view is the three-quarter one, as for --up alone (along +z, the default sight, a terrain was seen from
+/// underneath). A sight given along z keeps up y, since a view along its up is refused.
+void apply_conventional_up(DrawArgs& args) {
+  if (args.views.up_given || !args.config.empty() || args.input.empty()) return;
+  const std::optional<Vec3d> up = io::conventional_up(args.input);
+  if (!up) return;
+  view::CameraOptions& c = args.options.camera;
+  if (c.eye.has_value() != c.target.has_value()) return;  // the sight depends on the cloud's box
+  const std::optional<Vec3d> sight = c.eye ? std::optional<Vec3d>(*c.target - *c.eye) : c.direction;
+  if (sight && !(std::abs(sight->normalized().dot(*up)) < 0.99)) return;
+  c.up = *up;
+  args.views.up_given = true;
+}
+
 void run_draw(DrawArgs& args, const CLI::App& cmd, const GlobalOptions& global) {
   if (!args.config.empty()) apply_config(args, cmd);
+  apply_conventional_up(args);
   if (args.print_config) return print_config(args);
   if (args.input.empty()) throw OptionError("INPUT", "is required (a point cloud to draw)");
   if (args.outputs.empty() && args.json.empty() && args.stages.empty())

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 
 #include "columns.h"
@@ -308,6 +309,14 @@ std::optional<std::uint64_t> points_in_header(const std::string& path) {
   if (const std::optional<detail::StreamHeader> las = detail::las_stream_header(source)) return las->count;
   if (const std::optional<std::uint64_t> pcd = detail::pcd_header_count(source)) return pcd;
   return detail::ply_header_count(source);
+}
+
+std::optional<Vec3d> conventional_up(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[4] = {};
+  if (!in.read(head, sizeof head)) return std::nullopt;
+  if (sniff_las(std::string_view(head, sizeof head))) return Vec3d(0, 0, 1);
+  return std::nullopt;
 }
 
 std::optional<std::uint64_t> estimated_text_rows(const std::string& path) {

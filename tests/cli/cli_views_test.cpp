@@ -7,12 +7,14 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_test_support.h"
 #include "pcsketch/core/point_cloud.h"
+#include "support/las_writer.h"
 
 namespace pcsketch {
 namespace {
@@ -57,6 +59,36 @@ TEST_F(CliViews, UpAloneGivesTheThreeQuarterView) {
   // 15 degrees down from the horizon of z up, not along it (the old default looked from underneath, along +z).
   EXPECT_NEAR(f.z(), -std::sin(15.0 * 3.14159265358979323846 / 180.0), 1e-5);
   EXPECT_EQ(json["parameters"]["camera"]["azimuth_deg"], -35.0);
+}
+
+// A LAS file's z is elevation: drawn with no view flag it stands upright (three-quarter view about z), named views
+// are relative to z, and the flags still choose: --up, or a sight along z (which keeps up y instead of refusing).
+TEST_F(CliViews, LasFilesAreZUp) {
+  test::LasFile hill{.offset = Vec3d(500000, 4649000, 100)};
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x) {
+      const double u = (x - 19.5) / 10, v = (y - 19.5) / 10;
+      hill.points.push_back({Vec3d(500000 + u, 4649000 + v, 100 + std::exp(-(u * u + v * v)))});
+    }
+  const std::string las = path("hill.las");
+  std::ofstream(las, std::ios::binary) << test::write_las(hill);
+  const auto drawn = [&](const std::string& flags) {
+    const CommandRun r = run("-q draw " + las + " --size 96x96 " + flags + " --json " + path("h.json"));
+    EXPECT_EQ(r.status, 0) << flags << ": " << r.err;
+    return nlohmann::json::parse(slurp(path("h.json")));
+  };
+  const double down = -std::sin(15.0 * 3.14159265358979323846 / 180.0);
+  nlohmann::json json = drawn("");
+  EXPECT_EQ(json["parameters"]["camera"]["up"], nlohmann::json::array({0.0, 0.0, 1.0}));
+  EXPECT_NEAR(direction(json).z(), down, 1e-5);  // 15 degrees down onto the ground, not from underneath
+  EXPECT_TRUE(direction(drawn("--view top")).isApprox(Vec3d(0, 0, -1), 1e-6));
+  EXPECT_NEAR(direction(drawn("--azimuth 90 --elevation 30")).z(), -0.5, 1e-6);
+  json = drawn("--up 0,1,0");
+  EXPECT_EQ(json["parameters"]["camera"]["up"], nlohmann::json::array({0.0, 1.0, 0.0}));
+  EXPECT_NEAR(direction(json).y(), down, 1e-5);
+  json = drawn("--view 0,0,-1");  // a plan view along z: up stays y
+  EXPECT_TRUE(direction(json).isApprox(Vec3d(0, 0, -1), 1e-6));
+  EXPECT_EQ(json["parameters"]["camera"]["up"], nlohmann::json::array({0.0, 1.0, 0.0}));
 }
 
 TEST_F(CliViews, NamedViewRelativeToUp) {

@@ -91,6 +91,11 @@ ReadResult read_point_cloud_from_memory(std::string_view bytes, const std::strin
 /// for the other formats, whose count is known only once read. @throws pcsketch::Error for a malformed header.
 std::optional<std::uint64_t> points_in_header(const std::string& path);
 
+/// The up axis a file's format fixes: +z for LAS (the ASPRS format's z is elevation), nullopt for the others, whose
+/// axes follow no convention. Reads the file's first bytes only; nullopt for a file it cannot read (the read itself
+/// then gives the error).
+std::optional<Vec3d> conventional_up(const std::string& path);
+
 /// The rows of a text cloud (the XYZ family), which declares no count, estimated from the lengths of the lines at 256
 /// evenly spaced offsets (within a few percent of its data rows); nullopt for other formats and one-line texts.
 /// @throws pcsketch::Error for an empty or unreadable file.
