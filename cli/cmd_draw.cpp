@@ -189,8 +189,8 @@ void apply_conventional_up(DrawArgs& args) {
   if (!up) return;
   view::CameraOptions& c = args.options.camera;
   if (c.eye.has_value() != c.target.has_value()) return;  // the sight depends on the cloud's box
-  const std::optional<Vec3d> sight = c.eye ? std::optional<Vec3d>(*c.target - *c.eye) : c.direction;
-  if (sight && !(std::abs(sight->normalized().dot(*up)) < 0.99)) return;
+  const bool sight_given = c.direction || c.eye;           // else named views and azimuths turn about up
+  if (sight_given && !(std::abs(view::sight_frame(c).forward.normalized().dot(*up)) < 0.99)) return;
   c.up = *up;
   args.views.up_given = true;
 }

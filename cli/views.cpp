@@ -67,7 +67,9 @@ void add_camera_options(CLI::App* cmd, view::CameraOptions& c, ViewRequest& requ
          "View: a name relative to --up (" + names +
              ") or the direction of sight X,Y,Z (default 0,0,1: the paper looks along +z)")
       ->group(group);
-  add_vec3(cmd, "--up", "Up hint X,Y,Z (default 0,1,0, and 0,0,1 for LAS files); alone, without a view, gives the three-quarter view",
+  add_vec3(cmd, "--up",
+           "Up hint X,Y,Z (default 0,1,0, and 0,0,1 for LAS files); alone, without a view, gives the three-quarter "
+           "view",
            [&c, &request](const Vec3d& v) {
              c.up = v;
              request.up_given = true;

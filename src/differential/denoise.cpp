@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <numeric>
 
 #include "common.h"
 #include "core/parallel_chunks.h"
+#include "pcsketch/core/buffer.h"
 #include "pcsketch/differential/curvature.h"
 #include "pcsketch/differential/normals.h"
 
@@ -16,10 +16,11 @@ namespace {
 
 /// The distance part of the bilateral weights, #P·k: a Gaussian of the distance, its width the distance to the
 /// point's farthest neighbour. Fixed within a round (the points do not move while their normals are filtered).
-/// Written over `w` (nbh.distances.size() floats): a fresh std::vector's serial zero fill and page faults were a
-/// quarter of the denoising's time.
-void spatial_weights(const neighbourhood::Neighbourhoods& nbh, float* w) {
+/// Written over `w`, a Buffer: a fresh std::vector's serial zero fill and page faults were a quarter of the
+/// denoising's time, and the refresh reuses the same memory.
+void spatial_weights(const neighbourhood::Neighbourhoods& nbh, Buffer<float>& w) {
   const std::size_t k = nbh.k;
+  w.resize(nbh.distances.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nbh.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
       const float reach = std::max(nbh.distances[i * k + k - 1], 1e-30f);
@@ -43,7 +44,7 @@ float normal_weight(float dot, float inv_cutoff) {
 /// One pass of bilateral normal filtering: each normal becomes the weighted mean of its own and its neighbours'
 /// (signs aligned to its own), normalised.
 std::vector<Vec3f> filter_normals(const std::vector<Vec3f>& normals, const neighbourhood::Neighbourhoods& nbh,
-                                  const float* spatial, float inv_cutoff) {
+                                  const Buffer<float>& spatial, float inv_cutoff) {
   std::vector<Vec3f> out(normals.size());
   const std::size_t k = nbh.k;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, normals.size(), 1024),
@@ -68,7 +69,7 @@ std::vector<Vec3f> filter_normals(const std::vector<Vec3f>& normals, const neigh
 /// The neighbours' planes alone lift a point off a sphere of radius R by about d²/2R, its own plane through the
 /// neighbours lowers it by as much: their mean cancels the bias.
 std::vector<Vec3f> project_to_planes(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
-                                     const neighbourhood::Neighbourhoods& nbh, const float* spatial,
+                                     const neighbourhood::Neighbourhoods& nbh, const Buffer<float>& spatial,
                                      float inv_cutoff) {
   std::vector<Vec3f> out(points.size());
   const std::size_t k = nbh.k;
@@ -113,7 +114,7 @@ void refresh_distances(const std::vector<Vec3f>& points, neighbourhood::Neighbou
 
 /// `normals` after `passes` rounds of bilateral filtering with the spatial weights of this round.
 std::vector<Vec3f> filtered_normals(std::vector<Vec3f> normals, const neighbourhood::Neighbourhoods& nbh,
-                                    const float* spatial, const DenoiseOptions& options) {
+                                    const Buffer<float>& spatial, const DenoiseOptions& options) {
   for (std::size_t pass = 0; pass < options.normal_passes; ++pass)
     normals = filter_normals(normals, nbh, spatial, 1.f / options.normal_cutoff);
   return normals;
@@ -138,8 +139,7 @@ DenoiseResult denoise(std::vector<Vec3f>& points, neighbourhood::Neighbourhoods&
       !(std::sqrt(noise_share(points, normals, neighbourhoods)) * result.noise_before > trigger))
     return result;
   const ProgressReporter report(options.progress, "denoise");
-  const auto spatial_buffer = std::make_unique_for_overwrite<float[]>(neighbourhoods.distances.size());
-  float* const spatial = spatial_buffer.get();
+  Buffer<float> spatial;
   spatial_weights(neighbourhoods, spatial);
   for (std::size_t round = 0; round < options.iterations; ++round) {
     report(static_cast<double>(round) / static_cast<double>(options.iterations));
