@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Installs the CI build into a temporary prefix, then builds and runs tests/downstream/ against it twice: as a CMake
 # package (find_package(pcsketch)) and through pkg-config; then configures pcsketch as a subproject. Run after
-# scripts/test.sh (it installs build/ci).
+# scripts/test.sh (it installs the build that script tested).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-cmake --install build/ci --prefix "$tmp/prefix" > /dev/null
+build="build/$(bash scripts/test-preset.sh)"
+cmake --install "$build" --prefix "$tmp/prefix" > /dev/null
 # The wrapped libraries stay inside: no installed header includes them, the exported targets do not name nanoflann
 # (header-only, not needed by users), cairo and Embree are link-only.
 if grep -rE '#include <(nanoflann|embree|cairo|png)' "$tmp/prefix/include"; then
@@ -21,7 +22,7 @@ fi
 "$tmp/prefix/bin/pcsketch" --version > /dev/null
 
 # The Python module, when the build has one, is installed too and imports from the prefix alone.
-if compgen -G "build/ci/python/pcsketch*.so" > /dev/null; then
+if compgen -G "$build/python/pcsketch*.so" > /dev/null; then
   module=$(find "$tmp/prefix" -name 'pcsketch*.so' -print -quit)
   if [ -z "$module" ]; then
     echo "downstream: the Python module was built but not installed" >&2
