@@ -111,6 +111,11 @@ void add_contours(Builder& b) {
          .help = "Only the outline: no occluding contours inside it (the paper's contours)"});
   b.add(PCSKETCH_OPTION(view.contours.interior_neighbours),
         {.range = closed(1, kMaxK), .help = "Neighbours compared for an n.v sign change"});
+  b.add(PCSKETCH_OPTION(view.contours.interior_max_normal_angle_deg),
+        {.flag = "--rim-normal-angle",
+         .range = closed(0, 180),
+         .unit = "degrees",
+         .help = "Neighbours whose normals differ by more make no interior contour (180: off)"});
   b.add(PCSKETCH_OPTION(view.contours.interior_dedupe_factor),
         {.range = positive(1e3),
          .unit = "units of h",

@@ -303,6 +303,7 @@ void add_rim_samples(const std::vector<Vec3f>& positions, const std::vector<Vec3
   const float persistent = o.persistence_factor * normal_noise;
   // Side of f firmly reached near point i (the side f's sign says).
   const auto firm = [&](std::size_t i, float f) { return (f > 0 ? reach[i].first : reach[i].second) >= persistent; };
+  const float min_cos = std::cos(o.interior_max_normal_angle_deg * kDegToRad);
   std::vector<Vec3f> sample(n);
   std::vector<char> has_sample(n, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {
@@ -315,7 +316,7 @@ void add_rim_samples(const std::vector<Vec3f>& positions, const std::vector<Vec3
       for (std::size_t a = 0; a < m; ++a) {
         const std::uint32_t j = nb[a];
         const float fj = facing[j];
-        if (!(fi * fj < 0) || !firm(j, fj)) continue;
+        if (!(fi * fj < 0) || !firm(j, fj) || normals[i].dot(normals[j]) < min_cos) continue;
         const float t = fi / (fi - fj);
         sum += positions[i] + t * (positions[j] - positions[i]);
         ++count;

@@ -120,6 +120,34 @@ TEST(Contours, TubeAlongItsAxisHasItsCircleAsOutline) {
   expect_one_closed_circle(view, 1.f);
 }
 
+// A sphere whose normals point inward on a cap, as where a sheet's two sides or a plate's merged faces leave the
+// orientation's signs flipped in patches: across the cap's border, neighbouring normals are nearly opposite and n·v
+// changes sign firmly. That border is no rim, so it makes no rim sample; the real rim, turning the normal through
+// the view plane, still does (180°, the rule off, samples the border too).
+TEST(Contours, OppositeNormalsMakeNoRimSamples) {
+  Analysed sphere(test::sphere(1.f, {.n = 30000}));
+  // The cap x > 0.5 faces the viewer (looking along -x); its border is a circle of radius 0.87 around the x axis.
+  for (std::size_t i = 0; i < sphere.cloud.size(); ++i)
+    if (sphere.cloud.positions[i].x() > 0.5f) sphere.cloud.normals[i] = -sphere.cloud.normals[i];
+  const Camera camera = make_camera(sphere.cloud.positions, sphere.cloud.origin, {.direction = Vec3d(-1, 0, 0)});
+  const auto samples_near = [&](const ContourPoints& cp, float x) {
+    std::size_t count = 0;
+    for (const Vec3f& r : cp.rim) count += std::abs(r.x() - x) < 0.05f ? 1 : 0;
+    return count;
+  };
+  const auto find = [&](float angle) {
+    ContourOptions o;
+    o.interior_max_normal_angle_deg = angle;
+    return find_contour_points(sphere.cloud.positions, sphere.cloud.normals, sphere.surface.neighbourhoods,
+                               sphere.surface.spacing, camera, o);
+  };
+  const ContourPoints kept = find(120.f), all = find(180.f);
+  EXPECT_GT(samples_near(all, 0.5f), 300u);
+  EXPECT_EQ(samples_near(kept, 0.5f), 0u);
+  EXPECT_GT(samples_near(kept, 0.f), 300u);  // the rim, the great circle x = 0
+  EXPECT_EQ(samples_near(kept, 0.f), samples_near(all, 0.f));
+}
+
 TEST(Contours, RejectsNonPositiveSpacing) {
   const PointCloud s = test::sphere(1.f, {.n = 100});
   const Camera camera = make_camera(s.positions, s.origin);
