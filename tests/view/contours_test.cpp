@@ -141,7 +141,7 @@ TEST(Contours, OppositeNormalsMakeNoRimSamples) {
     return find_contour_points(sphere.cloud.positions, sphere.cloud.normals, sphere.surface.neighbourhoods,
                                sphere.surface.spacing, camera, o);
   };
-  const ContourPoints kept = find(120.f), all = find(180.f);
+  const ContourPoints kept = find(ContourOptions{}.interior_max_normal_angle_deg), all = find(180.f);
   EXPECT_GT(samples_near(all, 0.5f), 300u);
   EXPECT_EQ(samples_near(kept, 0.5f), 0u);
   EXPECT_GT(samples_near(kept, 0.f), 300u);  // the rim, the great circle x = 0

@@ -81,7 +81,7 @@ struct ContourOptions {
   /// rim turns the normal smoothly through the view plane, and a crease seen from the side by its dihedral angle; two
   /// nearby normals nearly opposite are a sheet's two sides, or a plate thinner than the noise whose faces merged and
   /// whose normals' signs then alternate in patches (n·v flips sign all over a face seen head-on).
-  float interior_max_normal_angle_deg = 120.0f;
+  float interior_max_normal_angle_deg = 90.0f;
   /// Rim samples within this 3D distance of an outline vertex belong to the outline already, in units of h.
   float interior_dedupe_factor = 3.0f;
   /// 3D search radius when chaining rim samples, in units of h. Rim samples lie about 2h apart along the
