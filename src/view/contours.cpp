@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <optional>
@@ -303,7 +304,10 @@ void add_rim_samples(const std::vector<Vec3f>& positions, const std::vector<Vec3
   const float persistent = o.persistence_factor * normal_noise;
   // Side of f firmly reached near point i (the side f's sign says).
   const auto firm = [&](std::size_t i, float f) { return (f > 0 ? reach[i].first : reach[i].second) >= persistent; };
-  const float min_cos = std::cos(o.interior_max_normal_angle_deg * kDegToRad);
+  // 180° is off: two opposite unit normals in float can give a dot a hair under cos 180° = -1.
+  const float min_cos = o.interior_max_normal_angle_deg >= 180.f
+                            ? -std::numeric_limits<float>::infinity()
+                            : std::cos(o.interior_max_normal_angle_deg * kDegToRad);
   std::vector<Vec3f> sample(n);
   std::vector<char> has_sample(n, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n), [&](const tbb::blocked_range<std::size_t>& range) {

@@ -78,9 +78,9 @@ struct ContourOptions {
   /// Neighbours examined for a sign change (the nearest of the k-NN list): a wider ring blurs the zero crossing.
   std::size_t interior_neighbours = 8;
   /// Beyond the paper: neighbours whose normals differ by more than this make no rim sample, degrees (180: off). A
-  /// rim turns the normal smoothly through the view plane, and a crease seen from the side by its dihedral angle; two
-  /// nearby normals nearly opposite are a sheet's two sides, or a plate thinner than the noise whose faces merged and
-  /// whose normals' signs then alternate in patches (n·v flips sign all over a face seen head-on).
+  /// rim turns the normal smoothly through the view plane, and a crease seen from the side by its dihedral angle (90°
+  /// on a cube); normals further apart within a few neighbours are a thin part's two sides, or a patch whose
+  /// orientation flipped (noise, thin parts), whose border n·v crosses firmly. 90: docs/views.md, "Opposite normals".
   float interior_max_normal_angle_deg = 90.0f;
   /// Rim samples within this 3D distance of an outline vertex belong to the outline already, in units of h.
   float interior_dedupe_factor = 3.0f;
