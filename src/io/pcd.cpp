@@ -359,7 +359,7 @@ void stream_pcd(const Source& src, std::size_t chunk_points, PointSink& sink) {
         const char* r = src.bytes.data() + h.body + i * h.record;
         decode(h, [&](const Field& f) { return load_ply_scalar(f.scalar, r + f.offset, false); }, p, n, c);
       },
-      [&](std::uint64_t end) { return h.body + static_cast<std::size_t>(end) * h.record; });
+      [&](std::uint64_t end) { return h.body + static_cast<std::size_t>(end) * h.record; }, Decode::any_order);
 }
 
 }  // namespace pcsketch::io::detail

@@ -2,6 +2,8 @@
 // Streaming readers: a format hands its points over in chunks, in file order, without building a RawCloud; the
 // consumer (src/io/stream_read.cpp) keeps what it needs. Memory then grows with what is kept, not with the file.
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_group.h>
 
 #include <algorithm>
@@ -75,9 +77,13 @@ std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t 
 /// The chunk loop of the readers whose chunks carry positions, normals and colours (PLY, PCD):
 /// `read(index, position, normal or nullptr, colour or nullptr)` decodes the points in file order; `end_byte(n)` is
 /// the offset where the first n points end, up to which pages are released after each chunk.
+/// With Decode::any_order, `read` must take any index from any thread (fixed-size binary records): each chunk is
+/// decoded in parallel.
+enum class Decode : std::uint8_t { file_order, any_order };
+
 template <class Read, class EndByte>
 void stream_chunks(const Source& src, std::uint64_t count, std::size_t chunk_points, bool has_normals, bool has_colors,
-                   PointSink& sink, Read&& read, EndByte&& end_byte) {
+                   PointSink& sink, Read&& read, EndByte&& end_byte, Decode decode = Decode::file_order) {
   chunk_points = std::max<std::size_t>(chunk_points, 1);
   // Two sets of buffers: a chunk is decoded (serially) while the sink takes the one before, one chunk at a time.
   struct Buffers {
@@ -97,8 +103,15 @@ void stream_chunks(const Source& src, std::uint64_t count, std::size_t chunk_poi
     for (std::uint64_t first = 0; first < count; first += chunk_points) {
       Buffers& b = buffers[first / chunk_points % 2];
       const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(chunk_points, count - first));
-      for (std::size_t i = 0; i < n; ++i)
-        read(first + i, b.positions[i], has_normals ? &b.normals[i] : nullptr, has_colors ? &b.colors[i] : nullptr);
+      const auto decode_range = [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i)
+          read(first + i, b.positions[i], has_normals ? &b.normals[i] : nullptr, has_colors ? &b.colors[i] : nullptr);
+      };
+      if (decode == Decode::any_order)
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192),
+                          [&](const tbb::blocked_range<std::size_t>& r) { decode_range(r.begin(), r.end()); });
+      else
+        decode_range(0, n);
       if (src.mapped) released = release_pages(src.bytes, released, end_byte(first + n));
       sinking.wait();  // the chunk before is taken: its buffers are free for the next
       sinking.run([&sink, &b, first, n] {
