@@ -74,18 +74,19 @@ class PointSink {
 /// to which pages are released, the `from` of the next call.
 std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t to);
 
-/// The chunk loop of the readers whose chunks carry positions, normals and colours (PLY, PCD):
-/// `read(index, position, normal or nullptr, colour or nullptr)` decodes the points in file order; `end_byte(n)` is
-/// the offset where the first n points end, up to which pages are released after each chunk.
-/// With Decode::any_order, `read` must take any index from any thread (fixed-size binary records): each chunk is
-/// decoded in parallel.
+/// How stream_chunks may call its `read`: in file order, or for any index from any thread (fixed-size binary
+/// records), each chunk then decoded in parallel.
 enum class Decode : std::uint8_t { file_order, any_order };
 
+/// The chunk loop of the readers whose chunks carry positions, normals and colours (PLY, PCD):
+/// `read(index, position, normal or nullptr, colour or nullptr)` decodes the points, in file order unless `decode`
+/// says any order; `end_byte(n)` is the offset where the first n points end, up to which pages are released after
+/// each chunk.
 template <class Read, class EndByte>
 void stream_chunks(const Source& src, std::uint64_t count, std::size_t chunk_points, bool has_normals, bool has_colors,
                    PointSink& sink, Read&& read, EndByte&& end_byte, Decode decode = Decode::file_order) {
   chunk_points = std::max<std::size_t>(chunk_points, 1);
-  // Two sets of buffers: a chunk is decoded (serially) while the sink takes the one before, one chunk at a time.
+  // Two sets of buffers: a chunk is decoded while the sink takes the one before, one chunk at a time.
   struct Buffers {
     std::vector<Vec3d> positions;
     std::vector<Vec3f> normals;
