@@ -1,9 +1,6 @@
 // PLY reader: ascii, binary_little_endian, binary_big_endian; every scalar type and alias; any elements and list
 // properties (skipped unless they are the vertices or, for meshes, the faces).
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -238,7 +235,7 @@ void read_vertex(BodyReader& body, const Element& e, const VertexLayout& l, Vec3
 }
 
 /// Binary vertex entries of one size, each decoded on its own from its offset: in parallel, where the walk of
-/// read_vertex is serial (the decode was 40% of a 5M-point file's read).
+/// read_vertex is serial (the 100M-point file's streamed read 14.4–15.5 → 10.0–10.3 s, docs/io.md).
 class FixedVertices {
  public:
   /// The vertex entries from `first` (BodyReader::take_fixed).
@@ -353,18 +350,18 @@ RawCloud parse_ply(const Source& src, Want want) {
       raw.positions.resize(e.count);
       if (has_normals) raw.normals.resize(e.count);
       if (has_colors) raw.colors.resize(e.count);
-      const auto out = [&](std::uint64_t i, auto&& read) {
-        read(i, raw.positions[i], has_normals ? &raw.normals[i] : nullptr, has_colors ? &raw.colors[i] : nullptr);
-      };
+      Vec3f* normals = has_normals ? raw.normals.data() : nullptr;
+      Rgb8* colors = has_colors ? raw.colors.data() : nullptr;
+      const auto count = static_cast<std::size_t>(e.count);
       if (const std::optional<std::size_t> first = body.take_fixed(e)) {
         const FixedVertices entries(src, e, layout, *first, body.swapped());
-        const auto read = [&](std::uint64_t i, Vec3d& p, Vec3f* n, Rgb8* c) { entries.read(i, p, n, c); };
-        tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, e.count, 8192), [&](const auto& r) {
-          for (std::uint64_t i = r.begin(); i != r.end(); ++i) out(i, read);
-        });
+        decode_points(
+            0, count, [&](std::uint64_t i, Vec3d& p, Vec3f* n, Rgb8* c) { entries.read(i, p, n, c); },
+            raw.positions.data(), normals, colors, Decode::any_order);
       } else {
-        const auto read = [&](std::uint64_t, Vec3d& p, Vec3f* n, Rgb8* c) { read_vertex(body, e, layout, p, n, c); };
-        for (std::uint64_t i = 0; i < e.count; ++i) out(i, read);
+        decode_points(
+            0, count, [&](std::uint64_t, Vec3d& p, Vec3f* n, Rgb8* c) { read_vertex(body, e, layout, p, n, c); },
+            raw.positions.data(), normals, colors, Decode::file_order);
       }
       vertices_done = true;
     } else if (&e == face) {

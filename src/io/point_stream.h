@@ -78,6 +78,22 @@ std::size_t release_pages(std::string_view bytes, std::size_t from, std::size_t 
 /// records), each chunk then decoded in parallel.
 enum class Decode : std::uint8_t { file_order, any_order };
 
+/// Points first .. first + n − 1 from `read(index, position, normal or nullptr, colour or nullptr)` into
+/// positions[0, n) and, where given, normals and colours; in parallel with Decode::any_order.
+template <class Read>
+void decode_points(std::uint64_t first, std::size_t n, const Read& read, Vec3d* positions, Vec3f* normals, Rgb8* colors,
+                   Decode decode) {
+  const auto decode_range = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      read(first + i, positions[i], normals ? &normals[i] : nullptr, colors ? &colors[i] : nullptr);
+  };
+  if (decode == Decode::any_order)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192),
+                      [&](const tbb::blocked_range<std::size_t>& r) { decode_range(r.begin(), r.end()); });
+  else
+    decode_range(0, n);
+}
+
 /// The chunk loop of the readers whose chunks carry positions, normals and colours (PLY, PCD):
 /// `read(index, position, normal or nullptr, colour or nullptr)` decodes the points, in file order unless `decode`
 /// says any order; `end_byte(n)` is the offset where the first n points end, up to which pages are released after
@@ -104,15 +120,8 @@ void stream_chunks(const Source& src, std::uint64_t count, std::size_t chunk_poi
     for (std::uint64_t first = 0; first < count; first += chunk_points) {
       Buffers& b = buffers[first / chunk_points % 2];
       const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(chunk_points, count - first));
-      const auto decode_range = [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i)
-          read(first + i, b.positions[i], has_normals ? &b.normals[i] : nullptr, has_colors ? &b.colors[i] : nullptr);
-      };
-      if (decode == Decode::any_order)
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192),
-                          [&](const tbb::blocked_range<std::size_t>& r) { decode_range(r.begin(), r.end()); });
-      else
-        decode_range(0, n);
+      decode_points(first, n, read, b.positions.data(), has_normals ? b.normals.data() : nullptr,
+                    has_colors ? b.colors.data() : nullptr, decode);
       if (src.mapped) released = release_pages(src.bytes, released, end_byte(first + n));
       sinking.wait();  // the chunk before is taken: its buffers are free for the next
       sinking.run([&sink, &b, first, n] {
