@@ -151,7 +151,8 @@ Table per_point_table(const std::string& first, const std::vector<std::string>& 
 }
 
 int bench_main(const char* name, int argc, char** argv, int (*run)(int, char**)) {
-  keep_freed_memory();  // as the CLI does, so the benches time what a user's draw costs
+  restart_with_huge_pages(argv);  // both as the CLI does, so the benches time what a user's draw costs
+  keep_freed_memory();
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {
