@@ -9,18 +9,33 @@
 #include <unistd.h>
 #endif
 
+// GCC names AddressSanitizer with a macro, clang only through __has_feature. The restart is off under it (and the
+// helpers it alone uses go with it), since ASan's own allocator ignores glibc's tunables.
+#if defined(__SANITIZE_ADDRESS__)
+#define PCSKETCH_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define PCSKETCH_UNDER_ASAN 1
+#endif
+#endif
+#if defined(__GLIBC__) && !defined(PCSKETCH_UNDER_ASAN)
+#define PCSKETCH_HUGE_PAGE_RESTART 1
+#endif
+
 namespace pcsketch {
 
 namespace {
 
 constexpr const char* kHugePageTunable = "glibc.malloc.hugetlb=1";
 
+#if defined(PCSKETCH_HUGE_PAGE_RESTART)
 /// The kernel's transparent huge page mode reads "always [madvise] never" with the chosen one in brackets.
 bool huge_pages_on_request() {
   std::ifstream mode("/sys/kernel/mm/transparent_hugepage/enabled");
   std::string line;
   return std::getline(mode, line) && line.find("[madvise]") != std::string::npos;
 }
+#endif
 
 }  // namespace
 
@@ -41,7 +56,7 @@ std::string detail::huge_page_tunables(const char* current) {
 }
 
 void restart_with_huge_pages(char** argv) {
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+#if defined(PCSKETCH_HUGE_PAGE_RESTART)
   const std::string tunables = detail::huge_page_tunables(std::getenv("GLIBC_TUNABLES"));
   // A preloaded library (valgrind's tools, heaptrack, another malloc) may own malloc, and the restarted program would
   // run outside the tool that watches it. Under "always" every heap already gets huge pages; under "never" none can.
