@@ -27,12 +27,17 @@ constexpr std::size_t kBlockPoints = 8192;  // consecutive (spatially sorted) po
 
 float median(const std::vector<float>& values) { return pcsketch::detail::nth_value(values, values.size() / 2); }
 
-/// Distance of point i from the PCA plane of its k nearest neighbours (the point itself not included).
-float plane_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
-                   std::size_t k) {
+/// Mean offset from point i of its k nearest neighbours (the point itself not included).
+Vec3d mean_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
+                  std::size_t k) {
   Vec3d mean = Vec3d::Zero();
   for (const std::uint32_t j : nbh.of(i).first(k)) mean += (points[j] - points[i]).cast<double>();
-  mean /= static_cast<double>(k);
+  return mean / static_cast<double>(k);
+}
+
+/// Distance of point i from the PCA plane of its k nearest neighbours, whose mean offset from i is `mean`.
+float plane_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
+                   std::size_t k, const Vec3d& mean) {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   for (const std::uint32_t j : nbh.of(i).first(k)) {
     const Vec3d d = (points[j] - points[i]).cast<double>() - mean;
@@ -42,6 +47,37 @@ float plane_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighb
   eigen.computeDirect(covariance);
   if (!eigen.eigenvectors().allFinite()) return 0.f;
   return static_cast<float>(std::abs(eigen.eigenvectors().col(0).dot(mean)));
+}
+
+/// A float no smaller than plane_offset(i) for the same mean: |e · mean| <= |mean| for a unit e, and the margin
+/// covers the rounding of e's length and of both casts to float.
+float offset_bound(const Vec3d& mean) { return static_cast<float>(mean.norm() * (1 + 1e-6)); }
+
+/// Each point's distance from its neighbours' plane, where it can matter: the off-surface limit is
+/// max(`base_limit`, 6 × the median offset), so a point whose bound is within `base_limit` is never off the surface
+/// once the bounds' median shows that the limit is `base_limit`. Such points keep their bound and skip the eigen
+/// solve (nearly all points of a surface: their neighbours' mean lies well within 2 m). Returns the limit; every
+/// entry is the exact offset where it exceeds the limit, so that `offset[i] > limit` decides as the exact offsets do.
+float off_surface_limit(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t k,
+                        float base_limit, const ProgressFn& progress, std::vector<float>& offset) {
+  const std::size_t n = points.size();
+  offset.resize(n);
+  // Bounds first (no eigen solve), then the exact offsets where a bound exceeds the limit, or everywhere when the
+  // bounds' median cannot show that the limit is base_limit (noisy clouds: a point's own noise moves its mean).
+  const auto fill = [&](auto&& value) {
+    pcsketch::detail::parallel_chunks(n, progress, "outliers", [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i != end; ++i) value(i);
+    });
+  };
+  fill([&](std::size_t i) { offset[i] = offset_bound(mean_offset(points, nbh, i, k)); });
+  // Each bound is at least its exact offset, so their median is at least the exact median.
+  const bool bounded = 6.f * median(offset) <= base_limit;
+  fill([&](std::size_t i) {
+    if (!bounded || !(offset[i] <= base_limit))
+      offset[i] = plane_offset(points, nbh, i, k, mean_offset(points, nbh, i, k));
+  });
+  if (bounded) return base_limit;
+  return std::max(base_limit, 6.f * median(offset));
 }
 
 /// The links of the cluster graph: dense points to their dense k-NN within `link`; a sparse point to its nearest
@@ -159,11 +195,8 @@ OutlierResult find_outliers(const std::vector<Vec3f>& points, const neighbourhoo
   const float dense_limit = options.density_factor * m, link = options.link_factor * m;
   // Off-surface points count as sparse: they may neither be dense nor lend a border point their cluster.
   if (k >= 3) {
-    std::vector<float> offset(n);
-    pcsketch::detail::parallel_chunks(n, options.progress, "outliers", [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i != end; ++i) offset[i] = plane_offset(points, nbh, i, k);
-    });
-    const float off_limit = std::max(options.offset_factor * m, 6.f * median(offset));
+    std::vector<float> offset;
+    const float off_limit = off_surface_limit(points, nbh, k, options.offset_factor * m, options.progress, offset);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 16384), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i != r.end(); ++i)
         if (offset[i] > off_limit) d[i] = std::numeric_limits<float>::infinity();
