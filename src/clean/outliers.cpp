@@ -64,17 +64,16 @@ float off_surface_limit(const std::vector<Vec3f>& points, const neighbourhood::N
   offset.resize(n);
   // Bounds first (no eigen solve), then the exact offsets where a bound exceeds the limit, or everywhere when the
   // bounds' median cannot show that the limit is base_limit (noisy clouds: a point's own noise moves its mean).
-  const auto fill = [&](auto&& value) {
-    pcsketch::detail::parallel_chunks(n, progress, "outliers", [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i != end; ++i) value(i);
-    });
-  };
-  fill([&](std::size_t i) { offset[i] = offset_bound(mean_offset(points, nbh, i, k)); });
+  // The bounds' pass is cheap and reports nothing: one stage's fraction never starts again at 0.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) offset[i] = offset_bound(mean_offset(points, nbh, i, k));
+  });
   // Each bound is at least its exact offset, so their median is at least the exact median.
   const bool bounded = 6.f * median(offset) <= base_limit;
-  fill([&](std::size_t i) {
-    if (!bounded || !(offset[i] <= base_limit))
-      offset[i] = plane_offset(points, nbh, i, k, mean_offset(points, nbh, i, k));
+  pcsketch::detail::parallel_chunks(n, progress, "outliers", [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i != end; ++i)
+      if (!bounded || !(offset[i] <= base_limit))
+        offset[i] = plane_offset(points, nbh, i, k, mean_offset(points, nbh, i, k));
   });
   if (bounded) return base_limit;
   return std::max(base_limit, 6.f * median(offset));
