@@ -94,12 +94,12 @@ TEST(Outliers, ASmallCloudIsItsOwnSurface) {
 // offsets, solving the plane of the few points near the limit only. Noise of σ = 0.4 m raises the median offset,
 // and so the limit, over that: the same points are then told apart with every plane solved.
 TEST(Outliers, HoveringPointsAreOffTheSurfaceBeyondTheLimit) {
+  const PointCloud base = test::plane(1.f, {.n = 8000, .seed = 14});
+  const neighbourhood::KdTree base_tree(base.positions);
+  const float m =
+      find_outliers(base.positions, neighbourhood::compute_neighbourhoods(base_tree, base.positions)).median_distance;
+  ASSERT_GT(m, 0.f);
   for (const float sigma : {0.f, 0.4f}) {
-    const PointCloud base = test::plane(1.f, {.n = 8000, .seed = 14});
-    const neighbourhood::KdTree base_tree(base.positions);
-    const float m =
-        find_outliers(base.positions, neighbourhood::compute_neighbourhoods(base_tree, base.positions)).median_distance;
-    ASSERT_GT(m, 0.f);
     PointCloud cloud = test::plane(1.f, {.n = 8000, .seed = 14, .noise_sigma = sigma * m});
     const std::size_t n = cloud.size();
     cloud.positions.push_back(Vec3f(0.1f, 0.2f, 1.f * m));   // near: within the limit, as a noisy surface point
