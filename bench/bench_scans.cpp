@@ -215,10 +215,15 @@ std::string measure(const std::string& model, const Condition& c, std::size_t n,
                         {"outline", score(drawn_contours, test::mesh_outline(mesh, cam))},
                         {"ridge", score(lines(LineKind::Ridge), sharp.convex.visible)},
                         {"valley", score(lines(LineKind::Valley), sharp.concave.visible)}});
-    if (!overlay_dir.empty())
-      write_overlay(overlay_dir + "/" + std::filesystem::path(model).stem().string() + "_" + c.name + "_" +
-                        std::to_string(v) + ".svg",
-                    cam, prepared.cloud, drawn_contours, contours);
+    if (!overlay_dir.empty()) {
+      const std::string stem =
+          overlay_dir + "/" + std::filesystem::path(model).stem().string() + "_" + c.name + "_" + std::to_string(v);
+      write_overlay(stem + ".svg", cam, prepared.cloud, drawn_contours, contours);
+      if (!sharp.convex.visible.empty())
+        write_overlay(stem + "_ridges.svg", cam, prepared.cloud, lines(LineKind::Ridge), sharp.convex.visible);
+      if (!sharp.concave.visible.empty())
+        write_overlay(stem + "_valleys.svg", cam, prepared.cloud, lines(LineKind::Valley), sharp.concave.visible);
+    }
   }
   // Outliers left in the analysed cloud, and surface points removed with them.
   std::size_t kept_outliers = 0;

@@ -12,7 +12,6 @@
 #include "common.h"
 #include "graph_curvature.h"
 #include "core/nth_value.h"
-#include "core/ordered_key.h"
 #include "core/parallel_chunks.h"
 
 namespace pcsketch::differential::detail {
@@ -45,105 +44,54 @@ double fit_radius(const neighbourhood::Neighbourhoods& shared, std::size_t i, st
   return radius_for(shared.distances[i * shared.k + shared.k - 1], shared.k, fit);
 }
 
-using pcsketch::detail::key_index;
-using pcsketch::detail::key_value;
-using pcsketch::detail::ordered_key;
-
-/// The k nearest neighbours of the points of one group, from one radius query around the group instead of one k-NN
-/// query per point (a k-NN query of 512 keeps its result sorted as it goes, ~75 µs a point). The query's radius holds
-/// each point's estimated k-th distance with a margin; a point whose k-th neighbour lies beyond what the ball surely
-/// holds for it gets its own k-NN query, so the sets are exactly the k nearest: clean clouds whose fit widens (coarse
-/// mesh vertices) keep exactly the fits they had.
+/// Each point's own support where a group's shared fit fails: a ball around the point, of the radius that holds
+/// about k there (GroupFitter::run), cut out of one query around the whole group. Picking each point's exact k
+/// nearest instead (a sort of the group's ball and a selection per point) was 60% of a noisy CAD part's crease fits,
+/// and on an even cloud the ball holds about as many. A ball holding under half or over twice the k asked for
+/// (uneven sampling, such as a coarse mesh's vertices) gives way to the point's exact k nearest.
 class GroupNeighbours {
  public:
-  GroupNeighbours(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& shared,
-                  const neighbourhood::KdTree& tree, std::size_t k)
-      : points_(points), shared_(shared), tree_(tree), k_(k) {}
+  GroupNeighbours(const std::vector<Vec3f>& points, const neighbourhood::KdTree& tree, std::size_t k)
+      : points_(points), tree_(tree), k_(k) {}
 
-  /// Gathers the ball around the group's points, nearest the centre first.
-  void gather(std::span<const std::uint32_t> group) {
-    centre_ = Vec3f::Zero();
-    for (const std::uint32_t i : group) centre_ += points_[i];
-    centre_ /= static_cast<float>(group.size());
-    float radius = 0;
-    for (const std::uint32_t i : group) radius = std::max(radius, (points_[i] - centre_).norm() + estimate(i));
+  /// Gathers every point within `radius` of any of the group's.
+  void gather(std::span<const std::uint32_t> group, float radius) {
+    Vec3f centre = Vec3f::Zero();
+    for (const std::uint32_t i : group) centre += points_[i];
+    centre /= static_cast<float>(group.size());
+    float spread = 0;
+    for (const std::uint32_t i : group) spread = std::max(spread, (points_[i] - centre).norm());
     radius_ = radius;
-    tree_.radius_unsorted(centre_, radius_, ball_);
-    by_centre_.resize(ball_.size());
+    tree_.radius_unsorted(centre, (spread + radius) * (1 + 1e-5f), ball_);
+    x_.resize(ball_.size()), y_.resize(ball_.size()), z_.resize(ball_.size());
     for (std::size_t b = 0; b < ball_.size(); ++b)
-      by_centre_[b] = ordered_key((points_[ball_[b]] - centre_).squaredNorm(), ball_[b]);
-    std::sort(by_centre_.begin(), by_centre_.end());
+      x_[b] = points_[ball_[b]].x(), y_[b] = points_[ball_[b]].y(), z_[b] = points_[ball_[b]].z();
   }
 
-  /// The k nearest neighbours of point i of the gathered group (i excluded), in no particular order.
-  /// Only the ball's points nearest the centre compete: the k + 1 nearest the centre (D from it at most) lie within
-  /// D + e of i, e its distance from the centre, so i's k nearest lie within D + 2e of the centre (a third of a
-  /// ball of a few thousand, for groups a fraction of the support wide).
+  /// Point i's neighbours within the gathered radius (i excluded), or its exact k nearest; in no particular order.
+  /// The ball's coordinates side by side and no branch: about half of the ball is kept, at random.
   const std::vector<std::uint32_t>& of(std::size_t i) {
     const Vec3f& p = points_[i];
-    const float e = (p - centre_).norm();
-    const float sure = radius_ - e;  // the ball holds every point this close to i
-    if (by_centre_.size() > k_) {
-      const float d = std::sqrt(key_value(by_centre_[k_]));
-      const float limit = (d + 2 * e) * (1 + 1e-5f);
-      const auto end = std::upper_bound(by_centre_.begin(), by_centre_.end(), ordered_key(limit * limit, UINT32_MAX));
-      candidates_.clear();
-      float largest = 0;
-      for (auto c = by_centre_.begin(); c != end; ++c) {
-        const auto j = key_index(*c);
-        if (j == i) continue;
-        const float d2 = (points_[j] - p).squaredNorm();
-        largest = std::max(largest, d2);
-        candidates_.push_back(ordered_key(d2, j));
-      }
-      if (candidates_.size() >= k_ && std::sqrt(key_value(smallest(k_, largest))) <= sure) return found_;
+    const float limit = radius_ * radius_;
+    found_.resize(ball_.size());
+    std::size_t count = 0;
+    for (std::size_t b = 0; b < ball_.size(); ++b) {
+      const float dx = x_[b] - p.x(), dy = y_[b] - p.y(), dz = z_[b] - p.z();
+      found_[count] = ball_[b];
+      count += static_cast<std::size_t>((dx * dx + dy * dy + dz * dz <= limit) & (ball_[b] != i));
     }
-    tree_.knn_of_point(i, k_, found_, distances_);
+    found_.resize(count);
+    if (2 * count < k_ || count > 2 * k_) tree_.knn_of_point(i, k_, found_, distances_);
     return found_;
   }
 
  private:
-  /// The k smallest candidates' indices into found_ (in no particular order); returns the k-th smallest key.
-  /// `largest` is the largest candidate's squared distance. Candidates fall into 256 rings of equal area (equal steps
-  /// of squared distance), counted in one pass: the rings below the one holding the k-th are taken whole and only
-  /// that ring is sorted out, instead of a selection over all of them (a quarter of a noisy CAD part's draw).
-  std::uint64_t smallest(std::size_t k, float largest) {
-    const float per_ring = largest > 0 ? 255.f / largest : 0.f;
-    rings_.resize(candidates_.size());
-    std::array<std::uint32_t, 256> count{};
-    for (std::size_t c = 0; c < candidates_.size(); ++c) {
-      const float r = key_value(candidates_[c]) * per_ring;
-      // NaN (a point at NaN): ring 0, never converted.
-      rings_[c] = static_cast<std::uint8_t>(r >= 0 ? std::min(255, static_cast<int>(r)) : 0);
-      ++count[rings_[c]];
-    }
-    std::size_t last = 0, below = 0;
-    while (below + count[last] < k) below += count[last++];
-    found_.clear();
-    edge_.clear();
-    for (std::size_t c = 0; c < candidates_.size(); ++c) {
-      if (rings_[c] < last) found_.push_back(key_index(candidates_[c]));
-      if (rings_[c] == last) edge_.push_back(candidates_[c]);
-    }
-    const std::size_t need = k - below;
-    std::nth_element(edge_.begin(), edge_.begin() + static_cast<std::ptrdiff_t>(need - 1), edge_.end());
-    for (std::size_t m = 0; m < need; ++m) found_.push_back(key_index(edge_[m]));
-    return edge_[need - 1];
-  }
-
-  /// Estimated distance of the k-th neighbour: the shared k-th distance scaled by √(k / shared k), with a margin.
-  float estimate(std::size_t i) const { return static_cast<float>(1.25 * fit_radius(shared_, i, k_)); }
-
   const std::vector<Vec3f>& points_;
-  const neighbourhood::Neighbourhoods& shared_;
   const neighbourhood::KdTree& tree_;
   std::size_t k_;
-  Vec3f centre_ = Vec3f::Zero();
   float radius_ = 0;
   std::vector<std::uint32_t> ball_, found_;
-  std::vector<float> distances_;
-  std::vector<std::uint64_t> by_centre_, candidates_, edge_;  ///< (squared distance bits, index): one compare orders them
-  std::vector<std::uint8_t> rings_;                           ///< each candidate's ring (smallest)
+  std::vector<float> x_, y_, z_, distances_;
 };
 
 /// One group's fit, with per-thread buffers.
@@ -187,21 +135,29 @@ struct GroupFitter {
     }
     // Tangent coordinates scaled to unit RMS radius: keeps the normal equations well conditioned at any scale.
     const double scale = spread > 0 ? std::sqrt(static_cast<double>(local.size()) / spread) : 1.0;
-    Mat10 normal_matrix = Mat10::Zero();
+    // The lower triangle is summed row after row in one packed array: each row's products b[r]·b[0..r] then lie
+    // side by side and vectorise, where the matrix's columns scattered them 80 bytes apart. Each entry is still
+    // summed over the points in the same order: the same bits.
+    std::array<double, 55> lower{};
     Vec10 rhs = Vec10::Zero();
     double zz = 0;
     for (const Vec3d& q : local) {
       const Vec10 b = cubic_basis(q.x() * scale, q.y() * scale);
-      for (int r = 0; r < 10; ++r)
-        for (int c = 0; c <= r; ++c) normal_matrix(r, c) += b[r] * b[c];
+      for (int r = 0, at = 0; r < 10; at += ++r)
+        for (int c = 0; c <= r; ++c) lower[at + c] += b[r] * b[c];
       rhs += q.z() * b;
       zz += q.z() * q.z();
     }
+    Mat10 normal_matrix = Mat10::Zero();
+    for (int r = 0, at = 0; r < 10; at += ++r)
+      for (int c = 0; c <= r; ++c) normal_matrix(r, c) = lower[at + c];
     // The same tiny ridge as the per-point fits: positive definite always, unseen terms zero.
     normal_matrix.diagonal().array() += 1e-9 * static_cast<double>(local.size());
     const std::optional<Vec10> c = solve(normal_matrix, rhs, zz, local.size());
     if (!c) {
-      near.gather(group);
+      // The group's ball held ball.size() points: on a surface the radius holding `fit` scales as its root.
+      const double share = ball.empty() ? 1.0 : static_cast<double>(options.fit) / static_cast<double>(ball.size());
+      near.gather(group, static_cast<float>(radius * std::sqrt(share)));
       for (const std::uint32_t i : group) {
         const std::vector<std::uint32_t>& nb = near.of(i);
         point_fit(i, nb.data(), nb.size());
@@ -305,8 +261,8 @@ std::size_t fit_groups(const std::vector<Vec3f>& points, const std::vector<Vec3f
   const std::size_t count = groups.size();
   std::vector<char> fell_back(count, 0);
   pcsketch::detail::parallel_chunks(count, options.progress, options.stage, [&](std::size_t begin, std::size_t end) {
-    GroupFitter fitter{points,    normals, shared, tree, options, point_fit, result,
-                       GroupNeighbours(points, shared, tree, options.fit), {}, {}};
+    GroupFitter fitter{
+        points, normals, shared, tree, options, point_fit, result, GroupNeighbours(points, tree, options.fit), {}, {}};
     for (std::size_t g = begin; g < end; ++g) fell_back[g] = fitter.run(groups.of(g));
   });
   std::size_t per_point = 0;
