@@ -3,19 +3,16 @@
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_group.h>
 
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <span>
 
 #include "common.h"
-#include "core/ordered_key.h"
-#include "graph_curvature.h"
 #include "core/nth_value.h"
+#include "core/ordered_key.h"
 #include "core/parallel_chunks.h"
 #include "group_fit.h"
+#include "quadric_fit.h"
 
 namespace pcsketch::differential {
 
@@ -23,106 +20,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// Neighbours of the smaller fit that separates noise from shape misfit (the point itself makes 6 + 6 dof).
-constexpr std::size_t kInnerFit = 11;
-
-/// What a fit computes: the residual feeds the noise estimates, the shape the curvature (a wide fit needs no
-/// residual: skipping its pass over the neighbours is a tenth of a noisy cloud's curvature time).
-enum class Want { residual, shape, both };
-
-/// Principal curvatures at one point (our sign convention) and the residual of the fit.
-struct PointFit {
-  float k1 = 0, k2 = 0;
-  Vec3f dir1 = Vec3f::UnitX(), dir2 = Vec3f::UnitY();
-  double residual = 0;  ///< RMS distance of the points to the fitted graph along the normal, dof-corrected
-};
-
-/// Least-squares quadric height field over local[0..size) (the point and its first size − 1 neighbours in the
-/// tangent frame (u, v, n) of its normal; `spread` is Σ x² + y² over the neighbours); principal curvatures from the
-/// shape operator of the fitted graph at the origin, and the fit's residual, as `want` asks.
-PointFit fit_quadric(const Vec3d* local, std::size_t size, double spread, const Vec3d& n, const Vec3d& u,
-                     const Vec3d& v, Want want) {
-  PointFit fit;
-  const std::size_t count = size - 1;
-  // Tangent coordinates scaled to unit RMS radius: keeps the normal equations well conditioned at any model scale.
-  const double scale = spread > 0 ? std::sqrt(static_cast<double>(count) / spread) : 1.0;
-  // The normal equations need only the moments Σ x^a y^b (a + b ≤ 4) and Σ z x^a y^b (a + b ≤ 2).
-  double x4 = 0, x3y = 0, x2y2 = 0, xy3 = 0, y4 = 0, x3 = 0, x2y = 0, xy2 = 0, y3 = 0, x2 = 0, xy = 0, y2 = 0, x1 = 0,
-         y1 = 0, zx2 = 0, zxy = 0, zy2 = 0, zx = 0, zy = 0, z1 = 0;
-  for (const Vec3d& q : std::span(local, size)) {
-    const double x = q.x() * scale, y = q.y() * scale, z = q.z();
-    const double xx = x * x, xy_ = x * y, yy = y * y;
-    x4 += xx * xx, x3y += xx * xy_, x2y2 += xx * yy, xy3 += xy_ * yy, y4 += yy * yy;
-    x3 += xx * x, x2y += xx * y, xy2 += x * yy, y3 += yy * y;
-    x2 += xx, xy += xy_, y2 += yy, x1 += x, y1 += y;
-    zx2 += z * xx, zxy += z * xy_, zy2 += z * yy, zx += z * x, zy += z * y, z1 += z;
-  }
-  const double w0 = static_cast<double>(size);
-  using Vec6 = Eigen::Matrix<double, 6, 1>;
-  Eigen::Matrix<double, 6, 6> normal_matrix;  // rows/columns: x², xy, y², x, y, 1
-  normal_matrix << x4, x3y, x2y2, x3, x2y, x2,  //
-      x3y, x2y2, xy3, x2y, xy2, xy,             //
-      x2y2, xy3, y4, xy2, y3, y2,               //
-      x3, x2y, xy2, x2, xy, x1,                 //
-      x2y, xy2, y3, xy, y2, y1,                 //
-      x2, xy, y2, x1, y1, w0;
-  const Vec6 rhs(zx2, zxy, zy2, zx, zy, z1);
-  // A tiny ridge makes every system positive definite; in well-posed fits its effect is ~1e-9 relative, in
-  // rank-deficient ones it zeroes the unseen coefficients.
-  normal_matrix.diagonal().array() += 1e-9 * w0;
-  const Vec6 c = normal_matrix.llt().solve(rhs);
-  if (!c.allFinite()) return fit;
-  const auto model = [&](const Vec3d& q) {
-    const double x = q.x() * scale, y = q.y() * scale;
-    return c[0] * x * x + c[1] * x * y + c[2] * y * y + c[3] * x + c[4] * y + c[5];
-  };
-
-  if (want != Want::shape) {
-    double squares = 0;
-    for (const Vec3d& q : std::span(local, size)) squares += std::pow(q.z() - model(q), 2);
-    const double dof = size > 6 ? static_cast<double>(size - 6) : 1.0;
-    fit.residual = std::sqrt(squares / dof);
-  }
-  if (want == Want::residual) return fit;
-
-  // Graph z = h(x, y): derivatives at the origin in model units.
-  const double s2 = scale * scale;
-  const detail::GraphCurvature g =
-      detail::graph_curvature(c[3] * scale, c[4] * scale, 2 * c[0] * s2, c[1] * s2, 2 * c[2] * s2);
-  fit.k1 = static_cast<float>(g.k1);
-  fit.k2 = static_cast<float>(g.k2);
-  // The tangent vector (ξ, η, hx ξ + hy η) projected onto the tangent plane of `normal` is ξ u + η v.
-  const Vec3d dir = g.xi.squaredNorm() > 0 ? Vec3d(g.xi.x() * u + g.xi.y() * v).normalized() : u;
-  fit.dir1 = dir.cast<float>();
-  fit.dir2 = n.cross(dir).cast<float>();
-  return fit;
-}
-
-/// The quadric fit (fit_quadric) over point i and its first `count` neighbours; with `inner`, also the residual of
-/// the fit over its first kInnerFit ≤ count neighbours, from the same tangent-frame coordinates.
-PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f& normal,
-                   const std::uint32_t* neighbours, std::size_t count, double* inner, Want want) {
-  if (inner) *inner = 0;
-  const Vec3d n = normal.cast<double>();
-  if (!(n.squaredNorm() > 0.5)) return {};  // no normal: no frame
-  Vec3d u, v;
-  detail::tangent_frame(n, u, v);
-  const Vec3d origin = points[i].cast<double>();
-
-  thread_local std::vector<Vec3d> local;
-  local.resize(count + 1);
-  local[0] = Vec3d::Zero();
-  double spread = 0, inner_spread = 0;
-  for (std::size_t m = 0; m < count; ++m) {
-    const Vec3d d = points[neighbours[m]].cast<double>() - origin;
-    local[m + 1] = Vec3d(d.dot(u), d.dot(v), d.dot(n));
-    spread += local[m + 1].head<2>().squaredNorm();
-    if (m + 1 == kInnerFit) inner_spread = spread;
-  }
-  if (inner && count >= kInnerFit)
-    *inner = fit_quadric(local.data(), kInnerFit + 1, inner_spread, n, u, v, Want::residual).residual;
-  return fit_quadric(local.data(), count + 1, spread, n, u, v, want);
-}
+using detail::fit_point, detail::kInnerFit, detail::PointFit, detail::Want;
 
 /// Median of χ²_ν/ν, ≈ (1 − 2/(9ν))³ (Wilson–Hilferty): the median squared residual of a fit with ν degrees of
 /// freedom on pure noise, relative to σ².

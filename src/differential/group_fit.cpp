@@ -73,12 +73,19 @@ class GroupNeighbours {
   const std::vector<std::uint32_t>& of(std::size_t i) {
     const Vec3f& p = points_[i];
     const float limit = radius_ * radius_;
-    found_.resize(ball_.size());
-    std::size_t count = 0;
-    for (std::size_t b = 0; b < ball_.size(); ++b) {
+    const std::size_t size = ball_.size();
+    const auto self = static_cast<std::uint32_t>(i);
+    // The distances in a loop of their own, which vectorises; the selection after them.
+    inside_.resize(size);
+    for (std::size_t b = 0; b < size; ++b) {
       const float dx = x_[b] - p.x(), dy = y_[b] - p.y(), dz = z_[b] - p.z();
+      inside_[b] = (dx * dx + dy * dy + dz * dz <= limit) & (ball_[b] != self);
+    }
+    found_.resize(size);
+    std::size_t count = 0;
+    for (std::size_t b = 0; b < size; ++b) {
       found_[count] = ball_[b];
-      count += static_cast<std::size_t>((dx * dx + dy * dy + dz * dz <= limit) & (ball_[b] != i));
+      count += inside_[b];
     }
     found_.resize(count);
     if (2 * count < k_ || count > 2 * k_) tree_.knn_of_point(i, k_, found_, distances_);
@@ -90,7 +97,7 @@ class GroupNeighbours {
   const neighbourhood::KdTree& tree_;
   std::size_t k_;
   float radius_ = 0;
-  std::vector<std::uint32_t> ball_, found_;
+  std::vector<std::uint32_t> ball_, found_, inside_;
   std::vector<float> x_, y_, z_, distances_;
 };
 
