@@ -120,7 +120,8 @@ PointFit fit_point(const std::vector<Vec3f>& points, std::size_t i, const Vec3f&
   local.x[0] = local.y[0] = local.z[0] = 0;
   double spread = 0, inner_spread = 0;
   std::size_t m = 0;
-  if (count >= kPairedFrom) {  // two neighbours at a time: the sum of the spread no longer waits on each add
+  // Two neighbours at a time, where the sum of the spread need not stop at kInnerFit: it no longer waits on each add.
+  if (count >= kPairedFrom && !inner) {
     const auto pair = [](double a, double b) { return Pair{a, b}; };
     Pair spreads = {0, 0};
     for (; m + 2 <= count; m += 2) {

@@ -74,6 +74,23 @@ TEST(Curvature, NoisySphereWithinTenPercent) {
   EXPECT_GT(c.fit_neighbours, a.surface.neighbourhoods.k);  // the noise was noticed
 }
 
+TEST(Curvature, NoiseEstimateOverWideNeighbourhoodsAtAnyScale) {
+  // σ̂ from fits over 80 shared neighbours (the inner fit over the first 11 of them) on a torus of tube radius 1 mm
+  // and 1 km: the noise found when there is some, and the shape's misfit not taken for noise when there is none.
+  for (const float scale : {1e-3f, 1e3f}) {
+    for (const float noise : {0.f, 0.01f}) {
+      PointCloud cloud = test::torus(4 * scale, scale, {.n = 20000, .seed = 5, .noise_sigma = noise * scale});
+      const neighbourhood::KdTree tree(cloud.positions);
+      const auto nb = neighbourhood::compute_neighbourhoods(tree, cloud.positions, {.k = 80});
+      const float estimate = estimate_noise(cloud.positions, cloud.normals, nb) / scale;
+      if (noise == 0)
+        EXPECT_LT(estimate, 1e-4f) << "scale " << scale;  // a tenth of the misfit's residual
+      else
+        EXPECT_NEAR(estimate, noise, 0.1f * noise) << "scale " << scale;
+    }
+  }
+}
+
 TEST(Curvature, CylinderAwayFromRims) {
   const float r = 1.f, height = 4.f;
   const Analysed a = analyse(test::cylinder(r, height, {.n = 20000, .seed = 3}));
