@@ -17,10 +17,10 @@ struct DenoiseOptions {
   /// The noise level that triggers denoising, in units of the mean spacing h. Clean samples of the shared meshes
   /// estimate σ̂ < 0.01 h; Gaussian noise of 0.1% of the diagonal on 200k points is about 0.6 h. Below 0.25 h
   /// denoising costs more than it buys: on 200k samples of bunny, camel and fandisk with σ̂ = 0.13–0.22 h the raw
-  /// cloud's contours score within 0.04 of the denoised ones; on sparse clouds (8k–20k noisy samples, a
-  /// rough mesh's vertices) its moves span pixels and the raw cloud draws far better (contour F1 up to +0.25). From
-  /// 0.25 h on denoising wins: contour precision raw 0.88–0.99 against 0.99–1.00 at 0.24–0.31 h, 0.74–0.83 against
-  /// 0.98–1.00 at 0.37–0.46 h. docs/geometry.md, "Noise".
+  /// cloud's contours score at most 0.04 below the denoised ones (and up to 0.06 above); on sparse clouds (8k–20k
+  /// noisy samples, a rough mesh's vertices) its moves span pixels and the raw cloud draws far better (contour F1
+  /// up to +0.25). From 0.25 h on denoising wins: contour precision raw 0.88–0.99 against 0.99–1.00 at 0.24–0.31 h,
+  /// 0.74–0.83 against 0.98–1.00 at 0.37–0.46 h. docs/geometry.md, "Noise".
   float min_noise_factor = 0.25f;
   /// Rounds of (PCA normals, bilateral normal filter, point update). Each round averages the heights of about k
   /// neighbours, so the noise falls roughly as 1/√(k · rounds); 3 rounds bring 0.4 h to under 0.1 h.
