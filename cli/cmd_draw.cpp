@@ -67,8 +67,8 @@ void print_timings(const Timings& t, const Prepared& prepared, const std::string
                 s.thinned.size(), s.scan_lines.spacing, s.scan_lines.anisotropy);
   std::printf("%-34s %10.3g  (%s)\n", "noise sigma / h", s.spacing > 0 ? s.input_noise / s.spacing : 0.0,
               s.denoised ? "denoised" : "not denoised");
-  std::printf("%-34s %10zu  (%zu points on their own support, the rest share a group's)\n", "curvature fit neighbours",
-              s.curvature.fit_neighbours, s.curvature.point_fits);
+  std::printf("%-34s %10zu  (%zu points fitted one by one at creases, the rest share a group's)\n",
+              "curvature fit neighbours", s.curvature.fit_neighbours, s.curvature.point_fits);
 }
 
 /// The formats of the stage images: those of the main outputs, PNG when there are none.

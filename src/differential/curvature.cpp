@@ -106,7 +106,7 @@ void beside_build(const neighbourhood::KdTree* tree, bool wanted, const Body& bo
 
 Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                    const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree* given_tree,
-                   const CurvatureOptions& options) {
+                   const CurvatureOptions& options, const DenoisedCopy& denoised) {
   const std::size_t n = points.size();
   detail::check_neighbourhoods("curvature", n, neighbourhoods);
   if (normals.size() != n)
@@ -148,12 +148,18 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
   const auto run_wide = [&](std::size_t k) {
     result.fit_neighbours = k;
     const neighbourhood::KdTree& tree = given_tree ? *given_tree : own_tree.emplace(points);
+    const bool copy = denoised.points != nullptr;
     const detail::PointFitFn point_fit = [&](std::size_t i, const std::uint32_t* nb, std::size_t count) {
-      store(i, fit_point(points, i, normals[i], nb, count, nullptr, Want::shape));
+      store(i, copy ? fit_point(*denoised.points, i, (*denoised.normals)[i], nb, count, nullptr, Want::shape)
+                    : fit_point(points, i, normals[i], nb, count, nullptr, Want::shape));
     };
-    result.point_fits = detail::fit_groups(
-        points, normals, neighbourhoods, tree,
-        {.fit = k, .noise_sigma = result.noise_sigma, .progress = options.progress, .stage = wide_stage}, point_fit, result);
+    result.point_fits = detail::fit_groups(points, normals, neighbourhoods, tree,
+                                           {.fit = k,
+                                            .noise_sigma = result.noise_sigma,
+                                            .shared_at_creases = copy,
+                                            .progress = options.progress,
+                                            .stage = wide_stage},
+                                           point_fit, result);
   };
 
   const std::size_t shared = neighbourhoods.k;
@@ -277,16 +283,19 @@ float noise_share(const std::vector<Vec3f>& points, const std::vector<Vec3f>& no
 
 Curvature estimate_curvature(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                              const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree& tree,
-                             const CurvatureOptions& options) {
+                             const CurvatureOptions& options, const DenoisedCopy& denoised) {
   if (tree.size() != points.size())
     throw Error("curvature: the kd-tree holds " + std::to_string(tree.size()) + " points but the cloud has " +
                 std::to_string(points.size()));
-  return estimate(points, normals, neighbourhoods, &tree, options);
+  const auto matches = [&](const std::vector<Vec3f>* v) { return v && v->size() == points.size(); };
+  if (denoised.points && !(matches(denoised.points) && matches(denoised.normals)))
+    throw Error("curvature: the denoised copy does not match the " + std::to_string(points.size()) + " points");
+  return estimate(points, normals, neighbourhoods, &tree, options, denoised);
 }
 
 Curvature estimate_curvature(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                              const neighbourhood::Neighbourhoods& neighbourhoods, const CurvatureOptions& options) {
-  return estimate(points, normals, neighbourhoods, nullptr, options);
+  return estimate(points, normals, neighbourhoods, nullptr, options, {});
 }
 
 }  // namespace pcsketch::differential

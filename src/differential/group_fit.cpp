@@ -161,6 +161,10 @@ struct GroupFitter {
     // The same tiny ridge as the per-point fits: positive definite always, unseen terms zero.
     normal_matrix.diagonal().array() += 1e-9 * static_cast<double>(local.size());
     const std::optional<Vec10> c = solve(normal_matrix, rhs, zz, local.size());
+    if (!c && options.shared_at_creases) {
+      for (const std::uint32_t i : group) point_fit(i, shared.of(i).data(), shared.k);
+      return true;
+    }
     if (!c) {
       // The group's ball held ball.size() points: on a surface the radius holding `fit` scales as its root.
       const double share = ball.empty() ? 1.0 : static_cast<double>(options.fit) / static_cast<double>(ball.size());

@@ -24,6 +24,7 @@ struct GroupFitOptions {
   double noise_sigma = 0;       ///< the cloud's noise σ̂, model units
   double misfit_factor = 5;     ///< cubic residual variance over this × σ̂²: fit each point on its own
   double cubic_shrink = 4;      ///< the cubic terms count in full only where they remove ≫ this × σ̂²
+  bool shared_at_creases = false;  ///< a crease's points are fitted over their shared k, not their own ball
   ProgressFn progress;
   std::string_view stage = "curvature";  ///< the progress stage name
 };
@@ -48,7 +49,8 @@ Groups make_groups(const std::vector<Vec3f>& points, const neighbourhood::Neighb
 /// the radius estimated to hold `fit` of them around the group's centroid, in the tangent frame of its mean normal:
 /// the quadric plus shrunk cubic terms (GroupFitter::solve). Each point of the group takes the principal curvatures
 /// of that graph at its own (x, y), its directions projected onto its own normal's tangent plane. Where the cubic
-/// leaves more than the noise (a crease in the support), each point is fitted on its own ball by `point_fit`.
+/// leaves more than the noise (a crease in the support), each point is fitted on its own ball by `point_fit`, or
+/// over its shared neighbours with `shared_at_creases`.
 /// Writes k1, k2, dir1, dir2 of every point; returns how many points were fitted one by one.
 std::size_t fit_groups(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                        const neighbourhood::Neighbourhoods& shared, const neighbourhood::KdTree& tree,

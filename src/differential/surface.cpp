@@ -178,6 +178,8 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
   // quadric fits the fold; the filtered normal of one face turns the other into a wall (a noisy cube's edges were
   // traced over 69–89% of their length instead of ≥ 90%).
   // So the points move in a copy, and the raw ones stay where the tree indexes them until the curvature is done.
+  // Where a group's wide support holds a crease, though, its points are fitted over their shared neighbours in the
+  // copy: the bilateral filter kept the crease sharp there, and the wide raw fits had placed crests off the edges.
   std::vector<Vec3f> moved, raw_normals;
   DenoiseResult denoised;
   if (options.denoise.enabled) {
@@ -233,8 +235,9 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
     for (std::size_t i = 0; i < cloud.size(); ++i)
       if (raw_normals[i].dot(cloud.normals[i]) < 0) raw_normals[i] = -raw_normals[i];  // the orientation's signs
   surface.curvature = timed(t.curvature, [&] {
-    return estimate_curvature(cloud.positions, surface.denoised ? raw_normals : cloud.normals,
-                              surface.neighbourhoods, *tree, with_progress(options.curvature, options.progress));
+    return estimate_curvature(cloud.positions, surface.denoised ? raw_normals : cloud.normals, surface.neighbourhoods,
+                              *tree, with_progress(options.curvature, options.progress),
+                              surface.denoised ? DenoisedCopy{&moved, &cloud.normals} : DenoisedCopy{});
   });
   append(surface.warnings, surface.curvature.warnings);
   if (surface.denoised) cloud.positions = std::move(moved);  // the tree indexes the raw points: dropped

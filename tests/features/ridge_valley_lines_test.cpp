@@ -274,6 +274,23 @@ TEST(RidgeValleyLines, FandiskSharpEdges) {
   expect_fandisk_edges(run(io::sample_mesh(mesh, {.n = 100000, .seed = 1})), sharp, 0.85, 0.85);
 }
 
+// Noisy fandisk (σ = 0.1% of the diagonal, 100k samples, so it is denoised): where a wide fit's support holds a
+// crease, its points are fitted over their shared neighbours in the denoised copy, whose creases the bilateral filter
+// kept sharp. Fitted on their own 512-point balls of the noisy points, as before, seed 3 gave ridge / valley
+// precision 0.82 / 0.90 and coverage 0.92 / 0.89; now 0.98 / 0.99 and 0.94 / 0.97.
+TEST(RidgeValleyLines, NoisyFandiskCreasesAreTracedOnTheirEdges) {
+  const Mesh mesh = io::read_mesh(std::string(PCSKETCH_FIXTURES) + "/fandisk.off");
+  const test::SharpEdges sharp = test::sharp_edges(mesh, 40.f);
+  const Analysed r = run(io::sample_mesh(mesh, {.n = 100000, .noise_sigma_factor = 0.001, .seed = 3}));
+  ASSERT_TRUE(r.surface.denoised);
+  const float h = r.surface.spacing;
+  const auto ridges = of_kind(r.result.lines, LineKind::Ridge);
+  const auto valleys = of_kind(r.result.lines, LineKind::Valley);
+  EXPECT_GE(precision(ridges, sharp.convex, 2.f * h), 0.95);
+  EXPECT_GE(precision(valleys, sharp.concave, 2.f * h), 0.95);
+  expect_fandisk_edges(r, sharp, 0.9, 0.9);
+}
+
 TEST(RidgeValleyLines, FandiskVertices) {
   const std::string path = std::string(PCSKETCH_FIXTURES) + "/fandisk.off";
   const Mesh mesh = io::read_mesh(path);

@@ -34,12 +34,21 @@ struct Curvature {
   std::vector<Vec3f> dir1;  ///< #P, unit principal direction of k1, tangent to the surface
   std::vector<Vec3f> dir2;  ///< #P, unit principal direction of k2 (= normal × dir1)
   std::size_t fit_neighbours = 0;  ///< neighbours used per fit (after noise adaptation)
-  std::size_t point_fits = 0;      ///< wide fits only: points fitted on their own support (creases); the rest share their group's
+  std::size_t point_fits = 0;  ///< wide fits only: points fitted one by one (creases: their own ball, or their shared
+                               ///< neighbours in a denoised copy); the rest share their group's
   float noise_sigma = 0;           ///< noise σ̂, model units: noise share of the median first-fit residual
   Warnings warnings;
 
   float mean(std::size_t i) const { return 0.5f * (k1[i] + k2[i]); }
   float gaussian(std::size_t i) const { return k1[i] * k2[i]; }
+};
+
+/// A denoised copy of the cloud (differential::denoise), same points in the same order. Where a wide fit's support
+/// holds a crease, its points are fitted over their shared k neighbours in this copy, whose creases the denoising
+/// kept sharp, instead of over their own wide ball of the noisy points (docs/geometry.md, "Noise", item 6).
+struct DenoisedCopy {
+  const std::vector<Vec3f>* points = nullptr;   ///< #P moved positions; null: no copy
+  const std::vector<Vec3f>* normals = nullptr;  ///< #P their unit normals, oriented as the fit's normals
 };
 
 /// Fits z = a x² + b xy + c y² + d x + e y + f (unweighted least squares, the point itself included) to each point's
@@ -51,10 +60,11 @@ struct Curvature {
 /// @param normals      #P unit normals, consistently oriented (outward for the sign convention)
 /// @param neighbourhoods  the shared k-NN of `points`
 /// @param tree         kd-tree over `points`, used when the fit needs more neighbours than the shared k
+/// @param denoised     optional: the denoised copy whose shared-k fits replace the per-point wide fits at creases
 /// @throws pcsketch::Error if the sizes disagree
 Curvature estimate_curvature(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                              const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree& tree,
-                             const CurvatureOptions& options = {});
+                             const CurvatureOptions& options = {}, const DenoisedCopy& denoised = {});
 /// The noise σ̂ the curvature step estimates (see CurvatureOptions::adapt_to_noise), model units, from the fits at
 /// no more than `max_samples` points spread along the point order (space-filling-curve order spreads them over the
 /// surface). Cheap enough to decide, before any other work, whether a cloud needs denoising.
