@@ -149,9 +149,10 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
     result.fit_neighbours = k;
     const neighbourhood::KdTree& tree = given_tree ? *given_tree : own_tree.emplace(points);
     const bool copy = denoised.points != nullptr;
+    const std::vector<Vec3f>& fit_points = copy ? *denoised.points : points;
+    const std::vector<Vec3f>& fit_normals = copy ? *denoised.normals : normals;
     const detail::PointFitFn point_fit = [&](std::size_t i, const std::uint32_t* nb, std::size_t count) {
-      store(i, copy ? fit_point(*denoised.points, i, (*denoised.normals)[i], nb, count, nullptr, Want::shape)
-                    : fit_point(points, i, normals[i], nb, count, nullptr, Want::shape));
+      store(i, fit_point(fit_points, i, fit_normals[i], nb, count, nullptr, Want::shape));
     };
     result.point_fits = detail::fit_groups(points, normals, neighbourhoods, tree,
                                            {.fit = k,

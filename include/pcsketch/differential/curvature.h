@@ -45,7 +45,7 @@ struct Curvature {
 
 /// A denoised copy of the cloud (differential::denoise), same points in the same order. Where a wide fit's support
 /// holds a crease, its points are fitted over their shared k neighbours in this copy, whose creases the denoising
-/// kept sharp, instead of over their own wide ball of the noisy points (docs/geometry.md, "Noise", item 6).
+/// kept sharp, instead of over their own wide ball of the noisy points (docs/geometry.md, "Noise", item 8).
 struct DenoisedCopy {
   const std::vector<Vec3f>* points = nullptr;   ///< #P moved positions; null: no copy
   const std::vector<Vec3f>* normals = nullptr;  ///< #P their unit normals, oriented as the fit's normals
