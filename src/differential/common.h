@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "core/ordered_key.h"
 #include "pcsketch/core/error.h"
+#include "pcsketch/core/point_cloud.h"
 #include "pcsketch/neighbourhood/neighbourhoods.h"
 
 namespace pcsketch::differential::detail {
@@ -35,6 +37,26 @@ inline std::vector<float> farthest_distances(const neighbourhood::Neighbourhoods
     for (std::size_t i = r.begin(); i != r.end(); ++i) farthest[i] = neighbourhoods.distances[i * k + k - 1];
   });
   return farthest;
+}
+
+/// The points one or two steps from i along the lists (i left out), each once, as ordered keys of their squared
+/// distances from i, into `keys`. `seen`, a flag a point, must come clear and is left clear: it dedupes without the
+/// sort of the ring's few hundred entries, which was most of its cost.
+inline void two_step_ring(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
+                          std::vector<std::uint8_t>& seen, std::vector<std::uint64_t>& keys) {
+  keys.clear();
+  seen[i] = 1;
+  const auto add = [&](std::uint32_t j) {
+    if (seen[j]) return;
+    seen[j] = 1;
+    keys.push_back(pcsketch::detail::ordered_key((points[j] - points[i]).squaredNorm(), j));
+  };
+  for (const std::uint32_t j : nbh.of(i)) {
+    add(j);
+    for (const std::uint32_t q : nbh.of(j)) add(q);
+  }
+  seen[i] = 0;
+  for (const std::uint64_t key : keys) seen[pcsketch::detail::key_index(key)] = 0;
 }
 
 }  // namespace pcsketch::differential::detail

@@ -1,5 +1,6 @@
 #include "pcsketch/differential/curvature.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/task_group.h>
 
@@ -228,22 +229,14 @@ namespace {
 /// neighbours, so no tree is needed.
 constexpr std::size_t kWideFit = 40;
 
-/// The kWideFit nearest of i's neighbours and their neighbours (i excluded), into `wide`; false if fewer.
+/// The kWideFit nearest of i's neighbours and their neighbours (i excluded), into `wide`, nearest first; false if
+/// fewer. `seen`: two_step_ring's flags.
 bool wide_neighbours(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
-                     std::vector<std::uint32_t>& ring, std::vector<std::uint64_t>& keys,
+                     std::vector<std::uint8_t>& seen, std::vector<std::uint64_t>& keys,
                      std::vector<std::uint32_t>& wide) {
-  ring.clear();
-  for (const std::uint32_t j : nbh.of(i)) {
-    ring.push_back(j);
-    for (const std::uint32_t q : nbh.of(j)) ring.push_back(q);
-  }
-  std::sort(ring.begin(), ring.end());
-  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-  keys.clear();
-  for (const std::uint32_t j : ring)
-    if (j != i) keys.push_back(pcsketch::detail::ordered_key((points[j] - points[i]).squaredNorm(), j));
+  detail::two_step_ring(points, nbh, i, seen, keys);
   if (keys.size() < kWideFit) return false;
-  std::nth_element(keys.begin(), keys.begin() + kWideFit - 1, keys.end());
+  std::partial_sort(keys.begin(), keys.begin() + kWideFit, keys.end());
   wide.resize(kWideFit);
   for (std::size_t m = 0; m < kWideFit; ++m) wide[m] = pcsketch::detail::key_index(keys[m]);
   return true;
@@ -258,12 +251,14 @@ float noise_share(const std::vector<Vec3f>& points, const std::vector<Vec3f>& no
   if (samples == 0) return 1.f;
   const std::size_t k = neighbourhoods.k;
   std::vector<double> outer(samples, -1), wider(samples, -1);
+  tbb::enumerable_thread_specific<std::vector<std::uint8_t>> flags(std::vector<std::uint8_t>(points.size(), 0));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples, 256), [&](const tbb::blocked_range<std::size_t>& r) {
     std::vector<std::uint64_t> keys;
-    std::vector<std::uint32_t> ring, wide;
+    std::vector<std::uint32_t> wide;
+    std::vector<std::uint8_t>& seen = flags.local();
     for (std::size_t j = r.begin(); j != r.end(); ++j) {
       const std::size_t i = j * stride;
-      if (!wide_neighbours(points, neighbourhoods, i, ring, keys, wide)) continue;
+      if (!wide_neighbours(points, neighbourhoods, i, seen, keys, wide)) continue;
       const std::uint32_t* nb = neighbourhoods.indices.data() + i * k;
       outer[j] = fit_point(points, i, normals[i], nb, k, nullptr, Want::residual).residual;
       wider[j] = fit_point(points, i, normals[i], wide.data(), kWideFit, nullptr, Want::residual).residual;

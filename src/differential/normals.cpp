@@ -6,6 +6,7 @@
 
 #include "common.h"
 #include "core/parallel_chunks.h"
+#include "core/smallest_eigenpair.h"
 
 namespace pcsketch::differential {
 
@@ -20,6 +21,31 @@ Vec3d perpendicular(const Vec3d& d) {
   Eigen::Index axis;
   d.cwiseAbs().minCoeff(&axis);
   return d.cross(Vec3d::Unit(axis)).normalized();
+}
+
+/// The PCA normal of a covariance and its surface variation λ0 / (λ0 + λ1 + λ2); false where the normal is
+/// arbitrary (all points identical or collinear).
+bool pca_normal(const Eigen::Matrix3d& covariance, Vec3d& normal, double& variation) {
+  double lambda0;
+  if (pcsketch::detail::smallest_eigenpair(covariance, lambda0, normal)) {
+    variation = lambda0 / covariance.trace();
+    return true;
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+  eigen.computeDirect(covariance);
+  const Vec3d lambda = eigen.eigenvalues().cwiseMax(0.0);  // ascending
+  const double total = lambda.sum();
+  variation = total > 0 ? lambda[0] / total : 0.0;
+  if (!(total > 0) || !eigen.eigenvectors().allFinite()) {
+    normal = Vec3d::UnitZ();  // all points identical: any direction is perpendicular to the data
+    return false;
+  }
+  if (lambda[1] <= kDegenerateRatio * lambda[2]) {
+    normal = perpendicular(eigen.eigenvectors().col(2));  // collinear
+    return false;
+  }
+  normal = eigen.eigenvectors().col(0).normalized();  // smallest variance: across the surface
+  return true;
 }
 
 }  // namespace
@@ -50,22 +76,11 @@ NormalResult estimate_normals(const std::vector<Vec3f>& points, const neighbourh
       const double count = static_cast<double>(k + 1);
       const Vec3d mean = sum / count;
       const Eigen::Matrix3d covariance = outer / count - mean * mean.transpose();
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-      eigen.computeDirect(covariance);
-      const Vec3d lambda = eigen.eigenvalues().cwiseMax(0.0);  // ascending
-      const double total = lambda.sum();
       Vec3d normal;
-      if (!(total > 0) || !eigen.eigenvectors().allFinite()) {
-        normal = Vec3d::UnitZ();  // all points identical: any direction is perpendicular to the data
-        ++local_degenerate;
-      } else if (lambda[1] <= kDegenerateRatio * lambda[2]) {
-        normal = perpendicular(eigen.eigenvectors().col(2));  // collinear
-        ++local_degenerate;
-      } else {
-        normal = eigen.eigenvectors().col(0).normalized();  // smallest variance: across the surface
-      }
+      double variation;
+      local_degenerate += !pca_normal(covariance, normal, variation);
       result.normals[i] = normal.cast<float>();
-      result.surface_variation[i] = total > 0 ? static_cast<float>(lambda[0] / total) : 0.f;
+      result.surface_variation[i] = static_cast<float>(variation);
     }
     degenerate += local_degenerate;
   });
