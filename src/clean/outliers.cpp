@@ -6,14 +6,15 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <nlohmann/json.hpp>
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <numeric>
 #include <utility>
 
 #include "core/nth_value.h"
 #include "core/parallel_chunks.h"
+#include "core/smallest_eigenpair.h"
 #include "core/union_find.h"
 #include "pcsketch/core/error.h"
 
@@ -43,6 +44,10 @@ float plane_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighb
     const Vec3d d = (points[j] - points[i]).cast<double>() - mean;
     covariance.noalias() += d * d.transpose();
   }
+  double lambda0;
+  Vec3d normal;
+  if (pcsketch::detail::smallest_eigenpair(covariance, lambda0, normal))
+    return static_cast<float>(std::abs(normal.dot(mean)));
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
   eigen.computeDirect(covariance);
   if (!eigen.eigenvectors().allFinite()) return 0.f;
