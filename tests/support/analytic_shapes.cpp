@@ -1,5 +1,7 @@
 #include "support/analytic_shapes.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -113,6 +115,24 @@ Mesh notched_box() {
   add_rectangle(mesh, {-w, -Y, floor}, {0, 0, d}, ey);              // notch walls
   add_rectangle(mesh, {w, -Y, floor}, {0, 0, d}, ey);
   add_rectangle(mesh, {-w, -Y, floor}, {2 * w, 0, 0}, ey);          // notch floor
+  return mesh;
+}
+
+Mesh box(const Vec3f& half) {
+  Mesh mesh;
+  for (std::uint32_t i = 0; i < 8; ++i)
+    mesh.vertices.emplace_back(i & 1 ? half.x() : -half.x(), i & 2 ? half.y() : -half.y(),
+                               i & 4 ? half.z() : -half.z());
+  for (int axis = 0; axis < 3; ++axis)
+    for (const std::uint32_t side : {0u, 1u}) {
+      const std::uint32_t k = 1u << axis, u = 1u << (axis + 1) % 3, v = 1u << (axis + 2) % 3;
+      const std::uint32_t base = side ? k : 0;
+      // Counter-clockwise around +axis (u × v = axis), reversed on the negative side.
+      std::array<std::uint32_t, 4> quad{base, base | u, base | u | v, base | v};
+      if (!side) std::reverse(quad.begin(), quad.end());
+      mesh.faces.push_back({quad[0], quad[1], quad[2]});
+      mesh.faces.push_back({quad[0], quad[2], quad[3]});
+    }
   return mesh;
 }
 

@@ -29,6 +29,9 @@ PointCloud cube(float a, const SampleSpec& spec = {});
 /// Box [-1,1]×[-0.8,0.8]×[-0.6,0.6] with a notch x ∈ [-0.3,0.3], z ∈ [0.2, 0.6] cut across the top face along y,
 /// as triangles: sharp convex edges (the rims) and concave ones (the notch's inner edges).
 Mesh notched_box();
+/// Axis-aligned box [-half, half] as 12 triangles on 8 shared vertices, wound with outward normals; vertex i has
+/// coordinate axis k at +half[k] when bit k is set.
+Mesh box(const Vec3f& half);
 /// Diagonal of the bounding box of a cloud (for noise relative to the diagonal).
 float diagonal(const PointCloud& cloud);
 

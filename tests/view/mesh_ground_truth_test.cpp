@@ -9,26 +9,13 @@
 #include <cmath>
 #include <limits>
 
+#include "support/analytic_shapes.h"
+
 namespace pcsketch::test {
 namespace {
 
 /// The cube [-1, 1]³ as 12 triangles with outward normals; vertex i has coordinate axis k at +1 when bit k is set.
-Mesh cube_mesh() {
-  Mesh mesh;
-  for (std::uint32_t i = 0; i < 8; ++i)
-    mesh.vertices.emplace_back(i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : -1.f);
-  for (int axis = 0; axis < 3; ++axis)
-    for (const std::uint32_t side : {0u, 1u}) {
-      const std::uint32_t k = 1u << axis, u = 1u << (axis + 1) % 3, v = 1u << (axis + 2) % 3;
-      const std::uint32_t base = side ? k : 0;
-      // Counter-clockwise around +axis (u × v = axis), reversed on the negative side.
-      std::array<std::uint32_t, 4> quad{base, base | u, base | u | v, base | v};
-      if (!side) std::reverse(quad.begin(), quad.end());
-      mesh.faces.push_back({quad[0], quad[1], quad[2]});
-      mesh.faces.push_back({quad[0], quad[2], quad[3]});
-    }
-  return mesh;
-}
+Mesh cube_mesh() { return box(Vec3f::Ones()); }
 
 float distance_to_segment(const Vec2f& p, const Vec2f& a, const Vec2f& b) {
   const Vec2f ab = b - a;

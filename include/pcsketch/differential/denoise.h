@@ -2,6 +2,8 @@
 // Feature-preserving denoising of a scanned cloud: bilateral filtering of the PCA normals, then each point moved onto
 // the tangent planes of its neighbours whose filtered normals agree with its own (docs/geometry.md, "Noise"). Runs
 // only when the estimated noise is a visible fraction of the spacing, so clean clouds are left exactly as they are.
+// Where many PCA normals lie beyond the filter's reach (noise near half their radius), they are taken over 64
+// neighbours instead ("Noise", item 9).
 
 #include <vector>
 
