@@ -1,5 +1,6 @@
 #include "pcsketch/differential/denoise.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_reduce.h>
 
 #include <Eigen/Eigenvalues>
@@ -12,6 +13,7 @@
 #include "common.h"
 #include "core/ordered_key.h"
 #include "core/parallel_chunks.h"
+#include "core/smallest_eigenpair.h"
 #include "pcsketch/core/buffer.h"
 #include "pcsketch/differential/curvature.h"
 #include "pcsketch/differential/normals.h"
@@ -121,37 +123,24 @@ void refresh_distances(const std::vector<Vec3f>& points, neighbourhood::Neighbou
 }
 
 /// Lists of the `k` nearest of each point's neighbours and their neighbours (no tree: the ring of two steps holds
-/// about four times the shared lists' area), for PCA normals over a wider scale than the shared lists.
+/// about four times the shared lists' area), for PCA normals over a wider scale than the shared lists. Indices only,
+/// in no order (the PCA and the vote sum over them): no distances, and a selection instead of a sort.
 neighbourhood::Neighbourhoods wider_lists(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh,
                                           std::size_t k) {
   neighbourhood::Neighbourhoods wide;
   wide.k = k;
   wide.indices.resize(points.size() * k);
-  wide.distances.resize(points.size() * k);
+  tbb::enumerable_thread_specific<std::vector<std::uint8_t>> flags(std::vector<std::uint8_t>(points.size(), 0));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 256), [&](const auto& r) {
-    thread_local std::vector<std::uint64_t> keys;
-    // Flags of the points already in the ring (no sort to dedupe), cleared after each ring.
-    thread_local std::vector<std::uint8_t> seen;
-    if (seen.size() != points.size()) seen.assign(points.size(), 0);
+    std::vector<std::uint64_t> keys;
+    std::vector<std::uint8_t>& seen = flags.local();
     for (std::size_t i = r.begin(); i != r.end(); ++i) {
-      keys.clear();
-      seen[i] = 1;
-      for (const std::uint32_t j : nbh.of(i))
-        for (const std::uint32_t q : nbh.of(j))
-          for (const std::uint32_t c : {j, q})
-            if (!seen[c]) {
-              seen[c] = 1;
-              keys.push_back(pcsketch::detail::ordered_key((points[c] - points[i]).squaredNorm(), c));
-            }
-      seen[i] = 0;
-      for (const std::uint64_t key : keys) seen[pcsketch::detail::key_index(key)] = 0;
+      detail::two_step_ring(points, nbh, i, seen, keys);
+      if (keys.empty()) keys.push_back(pcsketch::detail::ordered_key(0.f, static_cast<std::uint32_t>(i)));
       const std::size_t kept = std::min(k, keys.size());
-      std::partial_sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(kept), keys.end());
-      for (std::size_t m = 0; m < k; ++m) {
-        const std::uint32_t j = pcsketch::detail::key_index(keys[std::min(m, kept - 1)]);
-        wide.indices[i * k + m] = j;
-        wide.distances[i * k + m] = (points[j] - points[i]).norm();
-      }
+      std::nth_element(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(kept - 1), keys.end());
+      for (std::size_t m = 0; m < k; ++m)
+        wide.indices[i * k + m] = pcsketch::detail::key_index(keys[std::min(m, kept - 1)]);
     }
   });
   return wide;
@@ -168,10 +157,18 @@ std::optional<Vec3f> vote(std::size_t i, const std::vector<Vec3f>& given, const 
     const Vec3d nj = given[j].cast<double>();
     tensor.noalias() += nj * nj.transpose();
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
-  eigen.computeDirect(tensor);
-  const Vec3f major = eigen.eigenvectors().col(2).cast<float>();
-  if (!(eigen.eigenvalues()[2] > kConsensus * tensor.trace()) || !major.allFinite()) return std::nullopt;
+  // The dominant pair of the tensor is the smallest of trace·I − tensor, whose solver needs no trigonometry.
+  const double trace = tensor.trace();
+  double least = 0;
+  Vec3d dominant;
+  if (!pcsketch::detail::smallest_eigenpair(trace * Eigen::Matrix3d::Identity() - tensor, least, dominant)) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+    eigen.computeDirect(tensor);
+    least = trace - eigen.eigenvalues()[2];
+    dominant = eigen.eigenvectors().col(2);
+  }
+  const Vec3f major = dominant.cast<float>();
+  if (!(trace - least > kConsensus * trace) || !major.allFinite()) return std::nullopt;
   const float dot = given[i].dot(major);
   if (!(1.f - std::abs(dot) > cutoff)) return std::nullopt;
   return dot < 0 ? Vec3f(-major) : major;

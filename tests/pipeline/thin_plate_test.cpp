@@ -16,9 +16,8 @@ namespace {
 // A strip of the held-out blade's proportions (129 × 10 × 0.65 there), 100k samples with noise σ = 0.1% of the
 // diagonal: the plate is 5σ thick and σ ≈ 1.0 h (the blade's 200k samples: 1.3 h). Its 16-neighbour PCA normals
 // scatter beyond the bilateral filter's cutoff, which then cannot bring them back, and n·v changes sign in patches
-// all over the faces. Before the wider
-// normals (docs/geometry.md, "Noise", item 9) contour precision was 0.96 / 0.66 / 0.77 in these views (recall 1.00);
-// now 1.00 / 1.00 / 1.00 (recall 1.00).
+// all over the faces. Before the wider normals (docs/geometry.md, "Noise", item 9) contour precision was 0.96 / 0.66 /
+// 0.77 in these views (recall 1.00); now 1.00 / 1.00 / 1.00 (recall 1.00).
 TEST(ThinPlate, NoisyStripHasNoContoursOnItsFaces) {
   const Mesh mesh = test::box({0.5f, 0.04f, 0.0025f});
   const DrawOptions options;
