@@ -42,14 +42,17 @@ inline constexpr float kMinHatchSpacingPx = 1.0f;
 /// Estimated bytes of the buffers sized by the image of `options` (A8 raster plus attached-shadow grid).
 double image_bytes(const DrawOptions& options, const view::CameraOptions& camera);
 
-/// Memory a point costs the analysis and the drawing beyond the image buffers: kBytesPerPoint plus
+/// Memory a point costs the analysis and the drawing beyond the image buffers, at most: kBytesPerPoint plus
 /// kBytesPerNeighbour for each of its `--neighbours` k. Measured as the growth of peak RSS of `pcsketch draw
-/// --size 64x64` (2 threads) on area-uniform samples of fandisk, 50k to 400k points: 338 bytes a point at k = 16 and
-/// 677 at k = 64, i.e. 7 a neighbour (the k-NN lists hold an index and a distance: 8) and about 210 besides
-/// (positions, normals, curvature, Embree's discs, …), rounded up to 256; a noisy 200k sample (denoised, curvature
-/// fits widened to 512 neighbours) took 370 at k = 16, under the estimate's 384. `features` costs about as much.
+/// --size 64x64 --full-resolution` (2 threads) on area-uniform samples of fandisk, 50k to 400k points: 338 bytes a
+/// point at k = 16 and 677 at k = 64 on clean samples (the k-NN lists hold an index and a distance: 8 a neighbour;
+/// about 210 besides: positions, normals, curvature, Embree's discs, …). A noisy cloud costs more, and the estimate
+/// is made before the analysis knows: denoising adds its weights (4 a neighbour) and, where the wider normals fire
+/// (docs/geometry.md, "Noise", item 9), their lists of 4k indices (16 a neighbour). Samples at σ = 0.2%: 690 bytes a
+/// point at k = 16 (430 before the wider normals), 682 at k = 32 (where they do not fire). So 256 + 28 a neighbour:
+/// 704 at k = 16, about twice a clean cloud's cost, which a limit set by --max-memory can override.
 inline constexpr double kBytesPerPoint = 256;
-inline constexpr double kBytesPerNeighbour = 8;
+inline constexpr double kBytesPerNeighbour = 28;
 
 /// Estimated bytes of the analysis of `points` points with `surface` (kBytesPerPoint, kBytesPerNeighbour).
 double point_bytes(const differential::SurfaceOptions& surface, std::size_t points);

@@ -269,23 +269,23 @@ TEST_F(CliHostile, FeaturesAndSampleOutputsAreCheckedBeforeTheWork) {
 }
 
 TEST_F(CliHostile, MemoryIsEstimatedFromTheImageAndThePointsBeforeTheAnalysis) {
-  // 300 points at 256 + 8 x 16 bytes and a 96x96 image (9216 + 48384 bytes): 172800 bytes in all.
-  const CommandRun over = limited(draw("--max-memory 0.0001727"));
+  // 300 points at 256 + 28 x 16 bytes and a 96x96 image (9216 + 48384 bytes): 268800 bytes in all.
+  const CommandRun over = limited(draw("--max-memory 0.0002687"));
   EXPECT_EQ(over.status, 1) << over.err;
   EXPECT_EQ(lines(over.err), 1u) << over.err;
   EXPECT_NE(over.err.find("--max-memory: " + path("s.xyz") +
-                          ": 300 points (--neighbours 16) and a 96x96 image need about 0.000173 GB"),
+                          ": 300 points (--neighbours 16) and a 96x96 image need about 0.000269 GB"),
             std::string::npos)
       << over.err;
   EXPECT_FALSE(fs::exists(path("o.svg")));
-  EXPECT_EQ(limited(draw("--max-memory 0.0001729")).status, 0);
-  // features has no image: 300 x 384 = 115200 bytes.
+  EXPECT_EQ(limited(draw("--max-memory 0.0002689")).status, 0);
+  // features has no image: 300 x 704 = 211200 bytes.
   const std::string features = "-q features " + path("s.xyz") + " -o " + path("f.ply") + " --max-memory ";
-  const CommandRun refused = limited(features + "0.0001151");
+  const CommandRun refused = limited(features + "0.0002111");
   EXPECT_EQ(refused.status, 1) << refused.err;
   EXPECT_NE(refused.err.find("--max-memory: " + path("s.xyz") + ": 300 points"), std::string::npos) << refused.err;
   EXPECT_FALSE(fs::exists(path("f.ply")));
-  EXPECT_EQ(limited(features + "0.0001153").status, 0);
+  EXPECT_EQ(limited(features + "0.0002113").status, 0);
 }
 
 TEST_F(CliHostile, FifoInputIsRefusedWithoutBlocking) {

@@ -22,16 +22,16 @@ TEST(ValidateMemory, EstimateIsTheImageBuffersPlusThePointsAndTheirNeighbours) {
   DrawOptions o = small_image();
   // A8 raster 96 x 96 bytes; attached-shadow grid of 2 px cells, 48 x 48 cells of 21 bytes.
   EXPECT_DOUBLE_EQ(image_bytes(o, o.camera), 9216 + 48384);
-  EXPECT_DOUBLE_EQ(point_bytes(o.surface, 1000), 1000 * (256 + 8 * 16));
+  EXPECT_DOUBLE_EQ(point_bytes(o.surface, 1000), 1000 * (256 + 28 * 16));
   o.surface.neighbourhood.k = 64;
-  EXPECT_DOUBLE_EQ(point_bytes(o.surface, 1000), 1000 * (256 + 8 * 64));
+  EXPECT_DOUBLE_EQ(point_bytes(o.surface, 1000), 1000 * (256 + 28 * 64));
   EXPECT_GT(physical_memory_bytes(), 1e8);
 }
 
 TEST(ValidateMemory, PrepareRefusesACloudOverTheLimitAndAcceptsItAtTheLimit) {
   const PointCloud cloud = test::sphere(1.f, {.n = 300});
   DrawOptions o = small_image();
-  const double bytes = 9216 + 48384 + 300 * 384;  // 172800
+  const double bytes = 9216 + 48384 + 300 * 704;  // 268800
   o.max_memory_gb = (bytes + 1) / 1e9;
   EXPECT_TRUE(prepare(cloud, o).analysed());
   o.max_memory_gb = (bytes - 1) / 1e9;
@@ -41,7 +41,7 @@ TEST(ValidateMemory, PrepareRefusesACloudOverTheLimitAndAcceptsItAtTheLimit) {
   } catch (const OptionError& e) {
     EXPECT_EQ(e.flag(), "--max-memory");
     EXPECT_EQ(std::string(e.what()).find("--max-memory: the cloud: 300 points (--neighbours 16) and a 96x96 image need "
-                                         "about 0.000173 GB, over the limit of 0.000173 GB"),
+                                         "about 0.000269 GB, over the limit of 0.000269 GB"),
               0u)
         << e.what();
   }
