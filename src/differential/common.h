@@ -20,6 +20,11 @@ inline std::size_t neighbours_used(std::size_t requested, const neighbourhood::N
   return requested == 0 ? neighbourhoods.k : std::min(requested, neighbourhoods.k);
 }
 
+/// Every stride-th point makes a sample, so that about `max_samples` are taken (at most twice as many).
+inline std::size_t sample_stride(std::size_t n, std::size_t max_samples) {
+  return std::max<std::size_t>(1, n / std::max<std::size_t>(max_samples, 1));
+}
+
 /// Throws unless the neighbourhoods were computed for these `count` points.
 inline void check_neighbourhoods(std::string_view stage, std::size_t count,
                                  const neighbourhood::Neighbourhoods& neighbourhoods) {

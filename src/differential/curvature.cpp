@@ -21,16 +21,11 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-using detail::fit_point, detail::kInnerFit, detail::PointFit, detail::Want;
+using detail::fit_point, detail::kInnerFit, detail::PointFit, detail::sample_stride, detail::Want;
 
 /// Median of χ²_ν/ν, ≈ (1 − 2/(9ν))³ (Wilson–Hilferty): the median squared residual of a fit with ν degrees of
 /// freedom on pure noise, relative to σ².
 double chi_square_median(double dof) { return std::pow(1 - 2 / (9 * dof), 3); }
-
-/// Every stride-th point makes a sample, so that no more than `max_samples` are taken.
-std::size_t sample_stride(std::size_t n, std::size_t max_samples) {
-  return std::max<std::size_t>(1, n / std::max<std::size_t>(max_samples, 1));
-}
 
 /// The points the noise estimates fit: every `stride`-th; none (count 0) without `min_k` neighbours or normals.
 struct Sampling {

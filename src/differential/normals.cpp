@@ -100,7 +100,7 @@ float normal_noise(const std::vector<Vec3f>& normals, const neighbourhood::Neigh
   detail::check_neighbourhoods("normal noise", n, neighbourhoods);
   const std::size_t k = std::min<std::size_t>(8, neighbourhoods.k);
   if (n == 0 || k == 0) return 0.f;
-  const std::size_t stride = std::max<std::size_t>(1, n / std::max<std::size_t>(max_samples, 1));
+  const std::size_t stride = detail::sample_stride(n, max_samples);
   std::vector<float> angle((n + stride - 1) / stride);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, angle.size(), 1024), [&](const tbb::blocked_range<std::size_t>& r) {
     for (std::size_t s = r.begin(); s != r.end(); ++s) {
