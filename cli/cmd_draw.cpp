@@ -67,6 +67,8 @@ void print_timings(const Timings& t, const Prepared& prepared, const std::string
                 s.thinned.size(), s.scan_lines.spacing, s.scan_lines.anisotropy);
   std::printf("%-34s %10.3g  (%s)\n", "noise sigma / h", s.spacing > 0 ? s.input_noise / s.spacing : 0.0,
               s.denoised ? "denoised" : "not denoised");
+  if (s.own_face_lists > 0)
+    std::printf("%-34s %10zu  (their neighbours reached the other face)\n", "points on thin parts", s.own_face_lists);
   std::printf("%-34s %10zu  (%zu points fitted one by one at creases, the rest share a group's)\n",
               "curvature fit neighbours", s.curvature.fit_neighbours, s.curvature.point_fits);
 }

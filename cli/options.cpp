@@ -185,7 +185,7 @@ void add_draw_options(CLI::App* cmd, DrawOptions& o) {
 void add_memory_option(CLI::App* cmd, std::optional<double>& target) {
   cmd->add_option("--max-memory", target,
                   "Refuse a cloud estimated to need more memory than this, GB, before the analysis starts (about "
-                  "256 + 8 x --neighbours bytes a point, plus the image buffers); default: the machine's memory")
+                  "256 + 28 x --neighbours bytes a point, plus the image buffers); default: the machine's memory")
       ->check(CLI::PositiveNumber)
       ->group("Input");
 }

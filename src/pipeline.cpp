@@ -87,6 +87,7 @@ nlohmann::json parameters_json(const Prepared& prepared, const DrawOptions& opti
                    {"input_noise_sigma", prepared.surface.input_noise},
                    {"denoised", prepared.surface.denoised},
                    {"normal_noise", prepared.surface.normal_noise},
+                   {"thin_part_points", prepared.surface.own_face_lists},
                    {"border_points", prepared.boundary.border_points},
                    {"small_holes", prepared.boundary.small_holes},
                    {"tracing_radius_r", prepared.features.radius},

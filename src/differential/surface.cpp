@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/progress.h"
+#include "faces.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/io/decimate.h"
 #include "pcsketch/neighbourhood/spacing.h"
@@ -172,6 +173,11 @@ Surface analyse_surface(PointCloud& cloud, const SurfaceOptions& options,
                                                      with_progress(options.normals, options.progress));
                            });
                        });
+  // A thin part's lists reach its other face: from here on they hold the point's own face (docs/geometry.md).
+  if (estimate && !pca->own_face.empty())
+    surface.own_face_lists = timed(t.normals, [&] {
+      return detail::separate_faces(cloud.positions, pca->normals, pca->own_face, surface.neighbourhoods);
+    });
   // The curvature fits the raw points: denoising leaves its error correlated over a few h, which a quadric sees as
   // shape; the raw noise is independent, and the fit widens until it averages out.
   // Its frames are the raw points' normals too: at a crease they bisect the two faces, where the height field of a

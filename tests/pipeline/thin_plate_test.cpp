@@ -18,12 +18,9 @@ namespace {
 // scatter beyond the bilateral filter's cutoff, which then cannot bring them back, and n·v changes sign in patches
 // all over the faces. Before the wider normals (docs/geometry.md, "Noise", item 9) contour precision was 0.96 / 0.66 /
 // 0.77 in these views (recall 1.00); now 1.00 / 1.00 / 1.00 (recall 1.00).
-TEST(ThinPlate, NoisyStripHasNoContoursOnItsFaces) {
-  const Mesh mesh = test::box({0.5f, 0.04f, 0.0025f});
+/// Contour (and boundary) strokes of `prepared` from three views against the box's exact visible contours at 3 px.
+void expect_box_contours(const Mesh& mesh, const Prepared& prepared, double min_precision, double min_recall) {
   const DrawOptions options;
-  const Prepared prepared =
-      prepare(io::sample_mesh(mesh, {.n = 100000, .noise_sigma_factor = 0.001, .seed = 5}), options);
-  ASSERT_TRUE(prepared.surface.denoised);
   for (const Vec3d& direction : {Vec3d(0, 0, 1), Vec3d(1, 0.15, 0.6), Vec3d(1, 1, 1)}) {
     view::CameraOptions camera = options.camera;
     camera.direction = direction;
@@ -34,9 +31,48 @@ TEST(ThinPlate, NoisyStripHasNoContoursOnItsFaces) {
     const std::vector<Vec2f> borders = test::sample_visible_strokes(r.drawing, LineKind::Boundary);
     drawn.insert(drawn.end(), borders.begin(), borders.end());
     const test::LineMatch m = test::match_lines(drawn, test::mesh_contours(mesh, seen).visible, 3.f);
-    EXPECT_GE(m.precision, 0.9) << direction.transpose();
-    EXPECT_GE(m.recall, 0.9) << direction.transpose();
+    EXPECT_GE(m.precision, min_precision) << direction.transpose();
+    EXPECT_GE(m.recall, min_recall) << direction.transpose();
   }
+}
+
+TEST(ThinPlate, NoisyStripHasNoContoursOnItsFaces) {
+  const Mesh mesh = test::box({0.5f, 0.04f, 0.0025f});
+  const Prepared prepared =
+      prepare(io::sample_mesh(mesh, {.n = 100000, .noise_sigma_factor = 0.001, .seed = 5}), DrawOptions{});
+  ASSERT_TRUE(prepared.surface.denoised);
+  expect_box_contours(mesh, prepared, 0.9, 0.9);
+}
+
+struct CleanPlate {
+  float thickness;
+  std::size_t samples;
+};
+
+class CleanThinPlate : public ::testing::TestWithParam<CleanPlate> {};
+
+// A clean 1 × 0.6 plate about as thick as a 16-neighbour list is wide: each list reached the other face, whose
+// offset tilted the PCA normals (median 26° at 100k samples, t = 0.006) and drew contours all over the faces. Contour
+// precision min over these views before the own-face lists (docs/geometry.md, "Thin parts"): 0.08 (100k, t = 0.006),
+// 0.51 (200k, t = 0.006), 0.18 (50k, t = 0.01); now 0.87–0.88, 0.99, 0.90–0.91; recall 0.98–0.99 before and after.
+TEST_P(CleanThinPlate, HasNoContoursOnItsFaces) {
+  const CleanPlate c = GetParam();
+  const Mesh mesh = test::box({0.5f, 0.3f, 0.5f * c.thickness});
+  const Prepared prepared = prepare(io::sample_mesh(mesh, {.n = c.samples, .seed = 1}), DrawOptions{});
+  EXPECT_FALSE(prepared.surface.denoised);
+  EXPECT_GT(prepared.surface.own_face_lists, c.samples / 20);  // 18–78% of the points
+  expect_box_contours(mesh, prepared, 0.85, 0.9);
+}
+
+INSTANTIATE_TEST_SUITE_P(ThicknessNearTheListsRadius, CleanThinPlate,
+                         ::testing::Values(CleanPlate{0.006f, 100000}, CleanPlate{0.006f, 200000},
+                                           CleanPlate{0.01f, 50000}));
+
+// A plate thick enough for its lists to stay on one face is left as it was: no list is split.
+TEST(ThinPlate, ThickPlateListsAreLeftAlone) {
+  const Mesh mesh = test::box({0.5f, 0.3f, 0.02f});
+  const Prepared prepared = prepare(io::sample_mesh(mesh, {.n = 100000, .seed = 1}), DrawOptions{});
+  EXPECT_LT(prepared.surface.own_face_lists, 500u);  // 134, at the rims, where a side face's points are far
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #pragma once
 // Normals by PCA of each point's neighbourhood.
 
+#include <cstdint>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -18,6 +19,8 @@ struct NormalOptions {
 struct NormalResult {
   std::vector<Vec3f> normals;          ///< #P, unit, unoriented (sign arbitrary until orient_normals)
   std::vector<float> surface_variation;  ///< #P, λ0/(λ0+λ1+λ2) in [0, 1/3]: 0 on a plane, large at edges and noise
+  /// Points whose list holds two faces of a thin part, their normal taken over their own face (ascending).
+  std::vector<std::uint32_t> own_face;
   Warnings warnings;
 };
 

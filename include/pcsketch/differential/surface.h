@@ -64,6 +64,9 @@ struct Surface {
   /// (0.25 rad per σ̂/h) when σ̂ was estimated, so that a sparse cloud's bending is not taken for noise.
   float normal_noise = 0;
   std::size_t components = 0;      ///< connected components found by the orientation (0 if it did not run)
+  /// Points on a thin part whose lists reached its other face, their normal and list taken on their own face
+  /// (docs/geometry.md, "Thin parts").
+  std::size_t own_face_lists = 0;
   SurfaceTimings timings;
   Warnings warnings;
 };
