@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -46,9 +47,13 @@ inline std::vector<float> farthest_distances(const neighbourhood::Neighbourhoods
 
 /// The points one or two steps from i along the lists (i left out), each once, as ordered keys of their squared
 /// distances from i, into `keys`. `seen`, a flag a point, must come clear and is left clear: it dedupes without the
-/// sort of the ring's few hundred entries, which was most of its cost.
-inline void two_step_ring(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
-                          std::vector<std::uint8_t>& seen, std::vector<std::uint64_t>& keys) {
+/// sort of the ring's few hundred entries, which was most of its cost. `through(m)` chooses the m-th neighbours of i
+/// the ring passes through (the others and their lists are left out); by default all.
+template <typename Through = bool (*)(std::size_t)>
+void two_step_ring(
+    const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
+    std::vector<std::uint8_t>& seen, std::vector<std::uint64_t>& keys,
+    Through through = [](std::size_t) { return true; }) {
   keys.clear();
   seen[i] = 1;
   const auto add = [&](std::uint32_t j) {
@@ -56,9 +61,11 @@ inline void two_step_ring(const std::vector<Vec3f>& points, const neighbourhood:
     seen[j] = 1;
     keys.push_back(pcsketch::detail::ordered_key((points[j] - points[i]).squaredNorm(), j));
   };
-  for (const std::uint32_t j : nbh.of(i)) {
-    add(j);
-    for (const std::uint32_t q : nbh.of(j)) add(q);
+  const std::span<const std::uint32_t> first = nbh.of(i);
+  for (std::size_t m = 0; m < first.size(); ++m) {
+    if (!through(m)) continue;
+    add(first[m]);
+    for (const std::uint32_t q : nbh.of(first[m])) add(q);
   }
   seen[i] = 0;
   for (const std::uint64_t key : keys) seen[pcsketch::detail::key_index(key)] = 0;

@@ -11,6 +11,7 @@
 #include <limits>
 #include <utility>
 
+#include "common.h"
 #include "core/ordered_key.h"
 
 namespace pcsketch::differential::detail {
@@ -22,33 +23,16 @@ constexpr double kGapOverFarSpread = 2;  // and over the spread of the points be
 
 /// The new list of a split point: the nearest k of its own-face neighbours and their neighbours that lie within its
 /// face's band of offsets, as keys (squared distance, index), nearest first (fewer only where they hold too few).
-/// `seen`, a flag a point, dedupes them; it must come clear and is left clear.
+/// `seen`: two_step_ring's flags.
 void own_face_list(const std::vector<Vec3f>& points, std::size_t i, const Vec3d& normal,
                    const neighbourhood::Neighbourhoods& nbh, const std::array<bool, neighbourhood::kMaxNeighbours>& own,
                    const FaceSplit& split, std::vector<std::uint8_t>& seen, std::vector<std::uint64_t>& keys) {
+  two_step_ring(points, nbh, i, seen, keys, [&](std::size_t m) { return own[m]; });
   const Vec3d origin = points[i].cast<double>();
-  keys.clear();
-  seen[i] = 1;
-  const auto add = [&](std::uint32_t j) {
-    if (seen[j]) return;
-    seen[j] = 1;
-    const double offset = normal.dot(points[j].cast<double>() - origin);
-    if (offset > split.low && offset < split.high)
-      keys.push_back(pcsketch::detail::ordered_key((points[j] - points[i]).squaredNorm(), j));
-  };
-  const std::uint32_t* nb = nbh.indices.data() + i * nbh.k;
-  for (std::size_t m = 0; m < nbh.k; ++m)
-    if (own[m]) add(nb[m]);
-  for (std::size_t m = 0; m < nbh.k; ++m)
-    if (own[m])
-      for (const std::uint32_t q : nbh.of(nb[m])) add(q);
-  // Clear what was flagged: the point and the lists just read.
-  seen[i] = 0;
-  for (std::size_t m = 0; m < nbh.k; ++m)
-    if (own[m]) {
-      seen[nb[m]] = 0;
-      for (const std::uint32_t q : nbh.of(nb[m])) seen[q] = 0;
-    }
+  std::erase_if(keys, [&](std::uint64_t key) {
+    const double offset = normal.dot(points[pcsketch::detail::key_index(key)].cast<double>() - origin);
+    return !(offset > split.low && offset < split.high);
+  });
   const std::size_t k = std::min(nbh.k, keys.size());
   std::nth_element(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(k) - (k > 0), keys.end());
   keys.resize(k);

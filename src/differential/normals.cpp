@@ -71,6 +71,12 @@ Eigen::Matrix3d covariance_of(const std::vector<Vec3f>& points, const Vec3d& ori
   return outer / taken - mean * mean.transpose();
 }
 
+/// Covariance of point i and its neighbours `nb[0..count)`, relative to the point (exact differences in double).
+Eigen::Matrix3d every_neighbour_covariance(const std::vector<Vec3f>& points, std::size_t i, const std::uint32_t* nb,
+                                           std::size_t count) {
+  return covariance_of(points, points[i].cast<double>(), nb, count, [](std::size_t) { return true; });
+}
+
 /// The normal of the point's own face where its neighbours hold two: a plate about as thick as the neighbourhood is
 /// wide puts points of both faces in the list, and their offset along the normal, as large as the spread across it,
 /// tilts the PCA (a clean 1 × 0.6 × 0.006 plate of 100k points: median 26°). The nearest few lie on the point's own
@@ -86,7 +92,7 @@ bool own_face_normal(const std::vector<Vec3f>& points, std::size_t i, const std:
   double variation;
   if (seed)
     normal = seed->cast<double>();
-  else if (!pca_normal(covariance_of(points, origin, nb, kSeed, [](std::size_t) { return true; }), normal, variation))
+  else if (!pca_normal(every_neighbour_covariance(points, i, nb, kSeed), normal, variation))
     return false;
   std::array<bool, neighbourhood::kMaxNeighbours> own;
   for (int round = 0; round < 2; ++round) {
@@ -140,22 +146,10 @@ NormalResult estimate_normals(const std::vector<Vec3f>& points, const neighbourh
   pcsketch::detail::parallel_chunks(n, options.progress, "normals", [&](std::size_t begin, std::size_t end) {
     std::size_t local_degenerate = 0;
     for (std::size_t i = begin; i < end; ++i) {
-      // Covariance of the point and its neighbours, relative to the point (exact differences in double).
-      const Vec3d origin = points[i].cast<double>();
-      Vec3d sum = Vec3d::Zero();
-      Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
       const auto nb = neighbourhoods.indices.data() + i * neighbourhoods.k;
-      for (std::size_t m = 0; m < k; ++m) {
-        const Vec3d d = points[nb[m]].cast<double>() - origin;
-        sum += d;
-        outer.noalias() += d * d.transpose();
-      }
-      const double count = static_cast<double>(k + 1);
-      const Vec3d mean = sum / count;
-      const Eigen::Matrix3d covariance = outer / count - mean * mean.transpose();
       Vec3d normal;
       double variation;
-      local_degenerate += !pca_normal(covariance, normal, variation);
+      local_degenerate += !pca_normal(every_neighbour_covariance(points, i, nb, k), normal, variation);
       Vec3d layer_normal;
       if (layered && variation > kLayeredVariation &&
           own_face_normal(points, i, nb, k, neighbourhoods.distances[i * neighbourhoods.k + k - 1], nullptr,

@@ -26,8 +26,8 @@ struct NormalResult {
 
 /// PCA normal of each point: eigenvector of the smallest eigenvalue of its neighbourhood's covariance. Where sorted
 /// lists (with distances) reach a thin part's other face, the PCA is taken over the point's own face and the point
-/// is listed in NormalResult::own_face (docs/geometry.md, "Thin parts"). Degenerate neighbourhoods (all identical, collinear) get an arbitrary unit normal perpendicular to the data and a
-/// warning counting them; never NaN.
+/// is listed in NormalResult::own_face (docs/geometry.md, "Thin parts"). Degenerate neighbourhoods (all identical,
+/// collinear) get an arbitrary unit normal perpendicular to the data and a warning counting them; never NaN.
 NormalResult estimate_normals(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& neighbourhoods,
                               const NormalOptions& options = {});
 
