@@ -31,6 +31,10 @@ void add_cleaning(Builder& b) {
         {.range = positive(1e4),
          .unit = "median distances",
          .help = "A point this far off its neighbours' plane is stray"});
+  b.add(PCSKETCH_OPTION(surface.outliers.sheet_variation),
+        {.range = closed(0, 1),
+         .help = "A sparse point whose neighbours spread round a plane with at most this share of their variance "
+                 "across it is sparser surface, not stray (0: off)"});
   b.add(PCSKETCH_OPTION(surface.outliers.min_cluster),
         {.flag = "--outlier-min-cluster",
          .range = closed(1, 1 << 30),

@@ -36,14 +36,21 @@ Vec3d mean_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighbo
   return mean / static_cast<double>(k);
 }
 
-/// Distance of point i from the PCA plane of its k nearest neighbours, whose mean offset from i is `mean`.
-float plane_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
-                   std::size_t k, const Vec3d& mean) {
+/// Scatter matrix of point i's k nearest neighbours about their mean, whose offset from i is `mean`.
+Eigen::Matrix3d neighbour_scatter(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh,
+                                  std::size_t i, std::size_t k, const Vec3d& mean) {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
   for (const std::uint32_t j : nbh.of(i).first(k)) {
     const Vec3d d = (points[j] - points[i]).cast<double>() - mean;
     covariance.noalias() += d * d.transpose();
   }
+  return covariance;
+}
+
+/// Distance of point i from the PCA plane of its k nearest neighbours, whose mean offset from i is `mean`.
+float plane_offset(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh, std::size_t i,
+                   std::size_t k, const Vec3d& mean) {
+  const Eigen::Matrix3d covariance = neighbour_scatter(points, nbh, i, k, mean);
   double lambda0;
   Vec3d normal;
   if (pcsketch::detail::smallest_eigenpair(covariance, lambda0, normal))
@@ -84,13 +91,40 @@ float off_surface_limit(const std::vector<Vec3f>& points, const neighbourhood::N
   return std::max(base_limit, 6.f * median(offset));
 }
 
-/// The links of the cluster graph: dense points to their dense k-NN within `link`; a sparse point to its nearest
+/// Sparse points on a sheet of their k nearest (OutlierOptions::sheet_variation; k: the whole shared lists, 8
+/// neighbours leave too many random samplings' sheets elongated): 1 for each, 0 elsewhere. Only the sparse points
+/// are solved (none on most clouds).
+std::vector<std::uint8_t> sparse_sheets(const std::vector<Vec3f>& points, const neighbourhood::Neighbourhoods& nbh,
+                                        std::size_t k, const std::vector<float>& d, float dense_limit,
+                                        float max_variation) {
+  constexpr double kMinSpread = 0.05;  // share of the variance along the sheet's second axis: not a line of points
+  constexpr double kMaxOffset = 0.25;  // the point's distance from the sheet, in its d_i
+  std::vector<std::uint8_t> sheet(points.size(), 0);
+  if (!(max_variation > 0) || k < 3) return sheet;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const auto& r) {
+    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+      if (!(d[i] > dense_limit) || !std::isfinite(d[i])) continue;
+      const Vec3d mean = mean_offset(points, nbh, i, k);
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen;
+      eigen.computeDirect(neighbour_scatter(points, nbh, i, k, mean));
+      const Eigen::Vector3d lambda = eigen.eigenvalues();  // ascending
+      const double total = lambda.sum();
+      sheet[i] = total > 0 && lambda[0] <= max_variation * total && lambda[1] >= kMinSpread * total &&
+                 std::abs(eigen.eigenvectors().col(0).dot(mean)) <= kMaxOffset * d[i];
+    }
+  });
+  return sheet;
+}
+
+/// The links of the cluster graph: dense points to their dense k-NN within `link`; a sparse point on a sheet to its
+/// dense or sheet neighbours within link_factor × the smaller d of the two; another sparse point to its nearest
 /// dense neighbour within `link` (border), or to none (isolated). Off-surface points have d = ∞: never linked.
 struct Linking {
   const std::vector<float>& d;
+  const std::vector<std::uint8_t>& sheet;
   const neighbourhood::Neighbourhoods& nbh;
   std::size_t k;
-  float dense_limit, link;
+  float dense_limit, link_factor, link;
 
   /// Calls to(j) for each point j that i links to; whether i belongs to a cluster (dense, or linked).
   template <class To>
@@ -99,6 +133,16 @@ struct Linking {
     bool attached = dense;
     const auto nb = nbh.of(i);
     const auto dist = nbh.distances_of(i);
+    if (sheet[i]) {
+      for (std::size_t a = 0; a < k; ++a) {
+        const std::uint32_t j = nb[a];
+        if ((d[j] <= dense_limit || sheet[j]) && dist[a] <= link_factor * std::min(d[i], d[j])) {
+          to(j);
+          attached = true;
+        }
+      }
+      return attached;
+    }
     for (std::size_t a = 0; a < k && dist[a] <= link && std::isfinite(d[i]); ++a) {
       if (d[nb[a]] > dense_limit) continue;
       to(nb[a]);
@@ -207,7 +251,8 @@ OutlierResult find_outliers(const std::vector<Vec3f>& points, const neighbourhoo
     });
   }
 
-  const Linking linking{d, nbh, k, dense_limit, link};
+  const std::vector<std::uint8_t> sheet = sparse_sheets(points, nbh, nbh.k, d, dense_limit, options.sheet_variation);
+  const Linking linking{d, sheet, nbh, k, dense_limit, options.link_factor, link};
   mark_small_clusters(linking, options, result);
   return result;
 }

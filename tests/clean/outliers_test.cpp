@@ -83,6 +83,47 @@ TEST(Outliers, FourToOneDensityAndNoisyPointsAreSurface) {
   EXPECT_EQ(run(uneven).lost, 0u);
 }
 
+/// A unit sphere of 40k points with the x > 0 half thinned to one point in 36: d there is about 6 m, over the
+/// density factor, as on a coarse mesh's large faces.
+PointCloud sphere_with_sparse_half() {
+  const PointCloud dense = test::sphere(1.f, {.n = 40000, .seed = 15});
+  PointCloud uneven;
+  for (std::size_t i = 0; i < dense.size(); ++i)
+    if (dense.positions[i].x() <= 0 || i % 36 == 0) uneven.positions.push_back(dense.positions[i]);
+  return uneven;
+}
+
+TEST(Outliers, ASparseSheetStaysWithTheSurface) {
+  const PointCloud uneven = sphere_with_sparse_half();
+  EXPECT_EQ(run(uneven).lost, 0u);
+  // Without the sheet rule the sparse half falls apart: only its points next to the dense half are kept.
+  EXPECT_GT(run(uneven, {.sheet_variation = 0}).lost, 100u);
+  // Stray points are still found among the sparse sheet's.
+  PointCloud strays = uneven;
+  test::add_outliers(strays, 0.01f);
+  const Count c = run(strays);
+  EXPECT_GE(static_cast<double>(c.far_found), 0.95 * static_cast<double>(c.far)) << c.far_found << "/" << c.far;
+  EXPECT_LE(static_cast<double>(c.lost), 0.005 * static_cast<double>(c.surface));
+}
+
+TEST(Outliers, ALineOfSparsePointsIsNoSheet) {
+  // Flying pixels along a ray from the surface: 40 points 8 m apart, a line, not a sheet.
+  PointCloud cloud = test::sphere(1.f, {.n = 20000, .seed = 16});
+  const neighbourhood::KdTree tree(cloud.positions);
+  const float m =
+      find_outliers(cloud.positions, neighbourhood::compute_neighbourhoods(tree, cloud.positions)).median_distance;
+  ASSERT_GT(m, 0.f);
+  const std::size_t n = cloud.size();
+  cloud.source_index.assign(n, 0);
+  for (int s = 1; s <= 40; ++s) {
+    cloud.positions.push_back(Vec3f(0.f, 0.f, 1.f + 8.f * m * static_cast<float>(s)));
+    cloud.source_index.push_back(test::kOutlier);
+  }
+  const Count c = run(cloud);
+  EXPECT_EQ(c.lost, 0u);
+  EXPECT_GE(c.found, 39u);
+}
+
 TEST(Outliers, ASmallCloudIsItsOwnSurface) {
   // Fewer points than the minimum cluster: the largest cluster is kept whatever its size.
   const Count c = run(test::sphere(1.f, {.n = 20, .seed = 12}));
