@@ -134,6 +134,13 @@ void add_contours(Builder& b) {
          .range = non_negative(1e6),
          .unit = "units of h",
          .help = "On a denoised cloud, interior contours shorter than this are left out (noise squiggles)"});
+  b.add(PCSKETCH_OPTION(view.contours.depth_edge_factor),
+        {.flag = "--depth-edges",
+         .range = non_negative(1e6),
+         .unit = "units of h",
+         .help = "Interior contours where a surface ends this far in front of another (one-sided scans; 0: off)"});
+  b.add(PCSKETCH_OPTION(view.contours.depth_edge_radius_factor),
+        {.range = positive(1e3), .unit = "projected spacings", .help = "Image radius of the depth-edge test"});
   b.add(PCSKETCH_OPTION(view.contours.adaptive_spacing),
         {.flag = "--no-uneven-spacing",
          .negated = true,

@@ -172,7 +172,7 @@ view::ViewResult compute_view(const Prepared& prepared, const view::Camera& came
   std::vector<std::uint8_t> undrawn;
   if (!options.lines.boundaries)
     for (const std::uint8_t rim : prepared.boundary.border)
-      undrawn.push_back(rim ? features::Boundary::kUndrawnRim : std::uint8_t{0});
+      undrawn.push_back(rim == features::Boundary::kDrawnRim ? features::Boundary::kUndrawnRim : rim);
   view::ViewResult v = view::compute_view(prepared.cloud, prepared.surface, *prepared.scene, lines, camera,
                                           with_progress(options.view, options.progress),
                                           options.lines.boundaries ? prepared.boundary.border : undrawn);

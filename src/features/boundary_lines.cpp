@@ -136,8 +136,9 @@ class Cone {
 };
 
 /// kBorder where the cone is empty out to confirm_factor · r, kHole where it is empty out to 2.5r (a hole smaller than
-/// the cone), 0 elsewhere. Candidates in parallel, then the neighbours' neighbours, then a radius query for the
-/// candidates they leave (where the density changes, the two rings may stay on the dense side).
+/// the cone), Boundary::kEdge where it is filled farther out (the surface ends in front of another), 0 elsewhere.
+/// Candidates in parallel, then the neighbours' neighbours, then a radius query for the candidates they leave (where
+/// the density changes, the two rings may stay on the dense side).
 std::vector<std::uint8_t> border_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                                         const neighbourhood::Neighbourhoods& nbh, const BoundaryOptions& o,
                                         const neighbourhood::KdTree* given_tree) {
@@ -167,9 +168,7 @@ std::vector<std::uint8_t> border_points(const std::vector<Vec3f>& positions, con
     for (std::size_t c = r.begin(); c != r.end(); ++c) {
       const auto& [i, bisector] = left[c];
       const float nearest = cone.nearest(i, bisector, tree, found);
-      rim[i] = nearest == Cone::kNone                               ? kBorder
-               : nearest > Cone::kHoleFactor * cone.reach(i) ? kHole
-                                                             : std::uint8_t{0};
+      rim[i] = nearest == Cone::kNone ? kBorder : nearest > Cone::kHoleFactor * cone.reach(i) ? kHole : Boundary::kEdge;
     }
   });
   return rim;
@@ -184,21 +183,22 @@ struct RimSet {
 
 /// The points of `rim` (border or hole rims) in connected sets that hold a border point and span at least
 /// `min_size` (largest side of their bounding box), ascending; `small` counts the other sets. Sets of fewer than
-/// kMinRimPoints are cleared from `rim`, the others marked Boundary::kDrawnRim or kUndrawnRim: the rim of a hole a
-/// cone wide holds dozens. Past the scan for them, only the rim points are visited (a closed cloud has few or none),
-/// numbered by their places among them.
+/// kMinRimPoints are marked Boundary::kEdge, the others Boundary::kDrawnRim or kUndrawnRim: the rim of a hole a cone
+/// wide holds dozens. The points already kEdge are no rim and stay so. Past the scan for them, only the rim points are
+/// visited (a closed cloud has few or none), numbered by their places among them.
 std::vector<std::uint32_t> drawn_sets(const std::vector<Vec3f>& positions, const neighbourhood::Neighbourhoods& nbh,
                                       std::vector<std::uint8_t>& rim, float min_size, std::size_t& small) {
+  const auto is_rim = [&](std::uint32_t i) { return rim[i] == kBorder || rim[i] == kHole; };
   std::vector<std::uint32_t> points;
   for (std::uint32_t i = 0; i < rim.size(); ++i)
-    if (rim[i]) points.push_back(i);
+    if (is_rim(i)) points.push_back(i);
   const auto place = std::make_unique_for_overwrite<std::uint32_t[]>(rim.size());  // read at rim points only
   for (std::uint32_t p = 0; p < points.size(); ++p) place[points[p]] = p;
   // Places ascend with the indices: a set's root is still its smallest point, and comes first in it.
   pcsketch::detail::Clusters sets(points.size());
   for (std::uint32_t p = 0; p < points.size(); ++p)
     for (const std::uint32_t j : nbh.of(points[p]))
-      if (rim[j]) sets.join(p, place[j]);
+      if (is_rim(j)) sets.join(p, place[j]);
   std::vector<RimSet> records;
   std::vector<std::uint32_t> set_of(points.size());
   for (std::uint32_t p = 0; p < points.size(); ++p) {
@@ -216,8 +216,11 @@ std::vector<std::uint32_t> drawn_sets(const std::vector<Vec3f>& positions, const
   std::vector<std::uint32_t> drawn;
   for (std::uint32_t p = 0; p < points.size(); ++p) {
     const RimSet& set = records[set_of[p]];
-    // Fewer points: a stray mark (a random gap of the sampling, a change of density), not the rim of anything.
-    rim[points[p]] = set.points < kMinRimPoints ? 0 : kept(set) ? Boundary::kDrawnRim : Boundary::kUndrawnRim;
+    // Fewer points: a stray mark (a random gap of the sampling, a change of density), not the rim of anything; or a
+    // piece of an edge whose cone fills and empties along it (an edge in front of another surface, about 3r behind).
+    rim[points[p]] = set.points < kMinRimPoints ? Boundary::kEdge
+                     : kept(set)                ? Boundary::kDrawnRim
+                                                : Boundary::kUndrawnRim;
     if (rim[points[p]] == Boundary::kDrawnRim) drawn.push_back(points[p]);
   }
   return drawn;

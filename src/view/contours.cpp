@@ -11,12 +11,13 @@
 #include <optional>
 #include <span>
 
-#include "pcsketch/core/error.h"
+#include "contour_walk.h"
 #include "core/nth_value.h"
 #include "core/progress.h"
-#include "contour_walk.h"
+#include "depth_edges.h"
 #include "outline_bridges.h"
 #include "outline_points.h"
+#include "pcsketch/core/error.h"
 #include "point_grid.h"
 
 namespace pcsketch::view {
@@ -371,7 +372,10 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
   detail::OutlinePoints outline = detail::find_outline_points(cp.projected, cp.spacing_px, neighbourhoods, border, o);
   cp.boundary = std::move(outline.boundary);
   cp.outward = std::move(outline.outward);
-  if (o.interior && n > 0) add_rim_samples(positions, normals, neighbourhoods, camera, o, normal_noise, cp);
+  if (o.interior && n > 0) {
+    add_rim_samples(positions, normals, neighbourhoods, camera, o, normal_noise, cp);
+    detail::add_depth_edge_samples(positions, normals, neighbourhoods, border, spacing, camera, o, cp);
+  }
   return cp;
 }
 

@@ -53,11 +53,15 @@ struct BoundaryOptions {
 };
 
 struct Boundary {
-  /// The values of `border` on a rim drawn as a boundary line, and on one that is not drawn.
-  static constexpr std::uint8_t kDrawnRim = 1, kUndrawnRim = 2;
+  /// The values of `border` on a rim drawn as a boundary line, on one that is not drawn, and on an edge.
+  static constexpr std::uint8_t kDrawnRim = 1, kUndrawnRim = 2, kEdge = 3;
   /// #P (empty when disabled): kDrawnRim on a rim drawn as a boundary line, kUndrawnRim on a rim that is not drawn (a
-  /// small hole: its set spans under min_size_factor, or holds only points of a hole narrower than the cone), 0
-  /// elsewhere. No stage draws an outline along the rims that are not drawn.
+  /// small hole: its set spans under min_size_factor, or holds only points of a hole narrower than the cone), kEdge
+  /// where the surface ends but is no such rim: the confirmation's cone holds a point (a scan recorded from one side
+  /// stops at its interior contours, in front of the surface behind them), or the set of rim points is under 8, 0
+  /// elsewhere. No stage draws an outline along the rims that are not drawn. The views draw every such point where
+  /// the surface does not face the viewer and what lies beyond it in the image is far behind (depth edges,
+  /// view::ContourOptions::depth_edge_factor).
   std::vector<std::uint8_t> border;
   std::vector<Polyline> lines;       ///< kind Boundary, view-independent, the cloud's relative coordinates
   std::size_t border_points = 0;     ///< points on a drawn border

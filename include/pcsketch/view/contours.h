@@ -104,6 +104,17 @@ struct ContourOptions {
   /// for 0.01–0.07 of recall; on clean clouds (not denoised) it costs 0.02–0.06 of recall, so they keep
   /// min_length_factor.
   float denoised_min_length_factor = 20.0f;
+  /// Beyond the paper: depth edges. A scan recorded from one side has no points past its interior contours, so n·v
+  /// never changes sign there. A point is a rim sample when the surface ends at it (the border search marks it:
+  /// find_contour_points' `border` is not 0 there; no border, no depth edges), it does not face the viewer
+  /// (|n·v| ≤ 0.5), its projected neighbours leave a gap over gap_threshold_deg in the image, and every point within
+  /// depth_edge_radius_factor projected spacings beyond that gap (±confirm_half_angle_deg) lies more than this many
+  /// h behind it (and there is one). The samples take the mean depth of the edge points among their
+  /// interior_neighbours. 10: the same surface curving away within the radius lies 4–7 h behind a gap of its
+  /// sampling (the bunny's), a surface ending in front of another 20–120 h. docs/views.md, "Depth edges". 0: off.
+  float depth_edge_factor = 10.0f;
+  /// Image radius of the depth-edge test, in projected spacings (see depth_edge_factor).
+  float depth_edge_radius_factor = 6.0f;
 
   // --- the outline's scale ---
   /// Beyond the paper: the h_px of the outline's lengths (r, trace radius, z_max, absorb, min length) is each point's
