@@ -11,13 +11,13 @@
 #include <optional>
 #include <span>
 
-#include "contour_walk.h"
+#include "pcsketch/core/error.h"
 #include "core/nth_value.h"
 #include "core/progress.h"
+#include "contour_walk.h"
 #include "depth_edges.h"
 #include "outline_bridges.h"
 #include "outline_points.h"
-#include "pcsketch/core/error.h"
 #include "point_grid.h"
 
 namespace pcsketch::view {

@@ -109,9 +109,9 @@ CircleCover circle_cover(const ViewResult& view) {
   return cover;
 }
 
-// The front half of a sphere, 0.07 (about 7 h) in front of a wall: the border search finds that the surface ends
-// there, with the wall in the cone beyond (an edge, not the scan's border). The rim is drawn as a contour all round
-// (the wall lies more than 5 h behind it), and without the depth-edge test almost none of it.
+// The front half of a sphere, 0.12 (about 12 h) in front of a wall: the border search finds that the surface ends
+// there, with the wall in the cone beyond along much of the rim (an edge, not the scan's border). The rim is drawn
+// all round (the wall lies more than the default 10 h behind it), and without the depth-edge test almost none of it.
 TEST(DepthEdges, AHalfSphereInFrontOfAWallHasItsRimDrawn) {
   const Scene scene(in_front_of_wall(test::sphere(1.f, {.n = 30000}), 0.f, 0.12f));
   EXPECT_GT(scene.edge_points(), 100u);

@@ -111,7 +111,8 @@ struct ContourOptions {
   /// depth_edge_radius_factor projected spacings beyond that gap (±confirm_half_angle_deg) lies more than this many
   /// h behind it (and there is one). The samples take the mean depth of the edge points among their
   /// interior_neighbours. 10: the same surface curving away within the radius lies 4–7 h behind a gap of its
-  /// sampling (the bunny's), a surface ending in front of another 20–120 h. docs/views.md, "Depth edges". 0: off.
+  /// sampling (the clean bunny's), the other candidates there lay 20 h or more behind. docs/views.md, "Depth edges".
+  /// 0: off.
   float depth_edge_factor = 10.0f;
   /// Image radius of the depth-edge test, in projected spacings (see depth_edge_factor).
   float depth_edge_radius_factor = 6.0f;
