@@ -187,10 +187,12 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
   const std::vector<char> covered = covered_by_outline(cp.rim, outline, h, dedupe);
   std::vector<Vec3f> rim;
   std::vector<std::uint32_t> rim_point;
+  std::vector<char> depth_edge;
   for (std::size_t r = 0; r < cp.rim.size(); ++r) {
     if (covered[r]) continue;
     rim.push_back(cp.rim[r]);
     rim_point.push_back(cp.rim_point[r]);
+    depth_edge.push_back(r >= cp.depth_edges_begin);
   }
   if (rim.empty()) return {};
 
@@ -241,12 +243,15 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
     Polyline line;
     line.kind = LineKind::Contour;
     line.closed = closed;
+    std::size_t edges = 0;
     for (const std::uint32_t c : chain) {
       line.points.push_back(rim[c]);
       line.point_index.push_back(rim_point[c]);
+      edges += depth_edge[c] ? 1 : 0;
     }
-    if (chain.size() >= 3 && polyline_length(line.points, closed) >= min_length_factor * h)
-      lines.push_back(std::move(line));
+    // A chain of depth edges is no squiggle of noisy normals: it keeps the clean clouds' minimum length.
+    const float min_length = 2 * edges >= chain.size() ? o.min_length_factor : min_length_factor;
+    if (chain.size() >= 3 && polyline_length(line.points, closed) >= min_length * h) lines.push_back(std::move(line));
   }
   return lines;
 }
@@ -374,6 +379,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
   cp.outward = std::move(outline.outward);
   if (o.interior && n > 0) {
     add_rim_samples(positions, normals, neighbourhoods, camera, o, normal_noise, cp);
+    cp.depth_edges_begin = cp.rim.size();
     detail::add_depth_edge_samples(positions, normals, neighbourhoods, border, spacing, camera, o, cp);
   }
   return cp;

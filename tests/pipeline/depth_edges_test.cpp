@@ -121,6 +121,31 @@ TEST(DepthEdges, AHalfSphereInFrontOfAWallHasItsRimDrawn) {
   EXPECT_LT(without.covered, 0.1f);
 }
 
+// On a denoised cloud interior contours shorter than denoised_min_length_factor are dropped as noise squiggles; a
+// chain of depth edges is none and keeps min_length_factor. With that minimum above any line, the half sphere's rim
+// is still traced (its length is 2π), and the same samples not marked as depth edges give no line.
+TEST(DepthEdges, DepthEdgeChainsKeepTheCleanMinimumLengthOnADenoisedCloud) {
+  const Scene scene(in_front_of_wall(test::sphere(1.f, {.n = 30000}), 0.f, 0.12f));
+  ContourOptions o;
+  o.denoised_min_length_factor = 1e6f;
+  const Camera camera = make_camera(scene.analysed.cloud.positions, scene.analysed.cloud.origin, kAlongMinusX);
+  ContourPoints points = find_contour_points(scene.analysed.cloud.positions, scene.analysed.cloud.normals,
+                                             scene.analysed.surface.neighbourhoods, scene.analysed.surface.spacing,
+                                             camera, o, 0.f, scene.border);
+  ASSERT_LT(points.depth_edges_begin, points.rim.size());
+  const auto interior_length = [&] {
+    float length = 0;
+    for (const Polyline& line :
+         connect_contours(points, scene.analysed.cloud.positions, scene.analysed.surface.spacing, o, /*denoised=*/true)
+             .interior)
+      for (std::size_t v = 1; v < line.points.size(); ++v) length += (line.points[v] - line.points[v - 1]).norm();
+    return length;
+  };
+  EXPECT_GT(interior_length(), 0.9f * 2 * kPi);
+  points.depth_edges_begin = points.rim.size();
+  EXPECT_EQ(interior_length(), 0.f);
+}
+
 // The same wall 0.05 (about 5 h) behind: the rim is no depth edge (nor a border: the wall fills its cone).
 TEST(DepthEdges, ASurfaceCloseBehindMakesNoDepthEdge) {
   const Scene scene(in_front_of_wall(test::sphere(1.f, {.n = 30000}), 0.f, 0.05f));

@@ -4,6 +4,7 @@
 // the viewer inside the outline (an ear in front of the head, the inner rim of a torus seen from the side).
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "pcsketch/core/point_cloud.h"
@@ -111,8 +112,9 @@ struct ContourOptions {
   /// depth_edge_radius_factor projected spacings beyond that gap (±confirm_half_angle_deg) lies more than this many
   /// h behind it (and there is one). The samples take the mean depth of the edge points among their
   /// interior_neighbours. 10: the same surface curving away within the radius lies 4–7 h behind a gap of its
-  /// sampling (the clean bunny's), the other candidates there lay 20 h or more behind. docs/views.md, "Depth edges".
-  /// 0: off.
+  /// sampling (the clean bunny's), the other candidates there lay 20 h or more behind. A chain mostly of depth-edge
+  /// samples keeps min_length_factor on a denoised cloud too: it is no squiggle of noisy normals. docs/views.md,
+  /// "Depth edges". 0: off.
   float depth_edge_factor = 10.0f;
   /// Image radius of the depth-edge test, in projected spacings (see depth_edge_factor).
   float depth_edge_radius_factor = 6.0f;
@@ -138,6 +140,8 @@ struct ContourPoints {
   std::vector<Vec2f> outward;          ///< #B: unit image direction of each boundary point's largest empty gap
   std::vector<Vec3f> rim;              ///< #R: interior rim samples (zero crossings of n·v), relative coordinates
   std::vector<std::uint32_t> rim_point;  ///< #R: the cloud point each rim sample was made from
+  /// Rim samples from this index on are depth edges' (see depth_edge_factor); past the end: none.
+  std::size_t depth_edges_begin = std::numeric_limits<std::size_t>::max();
 };
 
 /// Projects the cloud and finds the outline's boundary points (paper §IV.B) and, when `options.interior`, the rim
@@ -171,7 +175,8 @@ struct ContourLines {
 
 /// Chains the contour points into polylines (the "contour connection" step): the outline first, then the interior
 /// contours not already covered by it. Deterministic.
-/// @param denoised the cloud was denoised (interior contours then need denoised_min_length_factor)
+/// @param denoised the cloud was denoised (interior contours then need denoised_min_length_factor, unless they are
+///        mostly depth edges)
 ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec3f>& positions, float spacing,
                               const ContourOptions& options = {}, bool denoised = false);
 
