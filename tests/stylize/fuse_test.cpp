@@ -138,13 +138,31 @@ TEST(Fuse, BetweenEqualRanksTheLongerLineIsDrawn) {
 TEST(Fuse, HiddenStrokesHatchingAndShortStretchesTakeNoPart) {
   Stroke hidden = straight(LineKind::Ridge, {0, 2}, {100, 2}, 51);
   hidden.visible = false;
+  // A ridge 6 px alongside (under 10 px), then away: it touches the contour, it does not double it.
+  const Stroke touching =
+      joined(straight(LineKind::Ridge, {40, 2}, {46, 2}, 4), straight(LineKind::Ridge, {46, 2}, {50, 40}, 20));
   std::vector<Stroke> in = {straight(LineKind::Contour, {0, 0}, {100, 0}, 51), hidden,
-                            straight(LineKind::Hatch, {0, 1}, {100, 1}, 51),
-                            straight(LineKind::Ridge, {40, 2}, {46, 2}, 4)};  // 6 px alongside: under 10 px
+                            straight(LineKind::Hatch, {0, 1}, {100, 1}, 51), touching};
   const FusionResult r = fuse_strokes(
       in, {FusionRank::Outline, FusionRank::Feature, FusionRank::None, FusionRank::Feature}, kPen);
   ASSERT_EQ(r.strokes.size(), 4u);
   for (const Stroke& s : r.strokes) EXPECT_FALSE(s.fused_into.has_value());
+}
+
+TEST(Fuse, AShortStrokeAlongsideOverItsWholeLengthIsADouble) {
+  // 6 px long, 1 px (within half a pen width) beside the contour all along: shorter than min_stretch_px, drawn once
+  // all the same. Across the contour it stays (the angle test); 3 px away (within the fusion distance, 6 px) it may
+  // be a fold beside the outline, and it stays.
+  std::vector<Stroke> in = {
+      straight(LineKind::Contour, {0, 0}, {100, 0}, 51), straight(LineKind::Contour, {40, 1}, {46, 1}, 4),
+      straight(LineKind::Ridge, {70, -3}, {70, 3}, 4), straight(LineKind::Contour, {20, 3}, {26, 3}, 4)};
+  const FusionResult r =
+      fuse_strokes(in, {FusionRank::Outline, FusionRank::Interior, FusionRank::Feature, FusionRank::Interior}, kPen);
+  ASSERT_EQ(r.strokes.size(), 4u);
+  ASSERT_TRUE(r.strokes[1].fused_into.has_value());
+  EXPECT_EQ(*r.strokes[1].fused_into, 0u);
+  EXPECT_FALSE(r.strokes[2].fused_into.has_value());
+  EXPECT_FALSE(r.strokes[3].fused_into.has_value());
 }
 
 TEST(Fuse, DisabledLeavesEveryStroke) {
