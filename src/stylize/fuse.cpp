@@ -132,18 +132,17 @@ void assign(std::vector<Match>& m, const Run& r, const Match& value) {
 }
 
 /// Keeps only the stretches worth fusing: matched runs shorter than min_stretch_px are drawn after all, unless the run
-/// is the whole stroke and lies within `tight` px of the other all along, and each kept run is drawn by one stroke
-/// (the one most of its vertices matched). Own runs then join a fused neighbour when they
-/// are stubs (under min_stretch_px: a stub left at the end of a stretch would be drawn as a tick) or short gaps
-/// between two stretches fused into the same stroke (under max_gap_px: where two tracings hover about the fusion
-/// distance the line drawn would otherwise switch between them).
+/// is the whole stroke and lies within `tight` px of the other all along (never when `tight` < 0), and each kept run is
+/// drawn by one stroke (the one most of its vertices matched). Own runs then join a fused neighbour when they are stubs
+/// (under min_stretch_px: a stub left at the end of a stretch would be drawn as a tick) or short gaps between two
+/// stretches fused into the same stroke (under max_gap_px: where two tracings hover about the fusion distance the line
+/// drawn would otherwise switch between them).
 void keep_stretches(const Stroke& s, std::vector<Match>& m, const FusionOptions& o, float tight) {
   const std::vector<Run> matched = runs_of(m, s.closed);
   for (const Run& r : matched) {
     if (m[r.first].stroke == kOwn) continue;
-    // A stroke within half a pen width of another over its whole length is a double however short (it cannot merely
-    // cross or touch: the angle test holds at every vertex). Further off, a short stroke may be a fold beside the
-    // outline: within a pen width, the 26 meshes' clean recall lost 0.003 (docs/stylize.md).
+    // A stroke within `tight` of another over its whole length is a double however short (it cannot merely cross or
+    // touch: the angle test holds at every vertex).
     const bool whole =
         matched.size() == 1 && std::all_of(m.begin(), m.end(), [tight](const Match& v) { return v.gap <= tight; });
     if (!whole && run_length(s, r) < o.min_stretch_px) {
@@ -260,7 +259,11 @@ FusionResult fuse_strokes(std::vector<Stroke> strokes, const std::vector<FusionR
     // In drawing order: a stroke's own matches are final before any later stroke looks at them.
     for (const std::uint32_t s : order) {
       drawn_by[s] = matches(strokes, s, position, drawn_by, grid, distance, cos_max);
-      keep_stretches(strokes[s], drawn_by[s], o, 0.5f * pen_width_px);
+      // Contours within half a pen width: further off a short one may be a fold beside the outline (within a pen
+      // width the 26 meshes' clean recall lost 0.003). Ridges and valleys keep the minimum stretch: those beside the
+      // outline are the edges it runs along (a plate's rims), which their own layer should hold (docs/stylize.md).
+      const float tight = rank[s] == FusionRank::Feature ? -1.f : 0.5f * pen_width_px;
+      keep_stretches(strokes[s], drawn_by[s], o, tight);
     }
   }
 

@@ -19,8 +19,8 @@ struct FusionOptions {
   float distance_widths = 2.f;
   /// A stretch is fused only when it is at least this long along the stroke not drawn, px. 10 px (about three pen
   /// widths): lines that cross or merely touch stay, only lines that run alongside each other are drawn once. A
-  /// stroke within half a pen width of another over its whole length is fused however short: it is a double (the
-  /// pieces an interior contour leaves beside the outline), and the angle test holds at each of its vertices.
+  /// contour within half a pen width of another line over its whole length is fused however short: it is a double
+  /// (the pieces an interior contour leaves beside the outline), and the angle test holds at each of its vertices.
   float min_stretch_px = 10.f;
   /// A gap shorter than this (px) between two stretches fused into the same stroke is fused too: two tracings of one
   /// rim hover about the fusion distance, and the line drawn would otherwise switch between them. 30 px = 3 stretches.
