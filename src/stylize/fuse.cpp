@@ -139,12 +139,12 @@ void assign(std::vector<Match>& m, const Run& r, const Match& value) {
 /// drawn would otherwise switch between them).
 void keep_stretches(const Stroke& s, std::vector<Match>& m, const FusionOptions& o, float tight) {
   const std::vector<Run> matched = runs_of(m, s.closed);
+  // A stroke within `tight` of another over its whole length is a double however short (it cannot merely cross or
+  // touch: the angle test holds at every vertex).
+  const bool whole =
+      matched.size() == 1 && std::all_of(m.begin(), m.end(), [tight](const Match& v) { return v.gap <= tight; });
   for (const Run& r : matched) {
     if (m[r.first].stroke == kOwn) continue;
-    // A stroke within `tight` of another over its whole length is a double however short (it cannot merely cross or
-    // touch: the angle test holds at every vertex).
-    const bool whole =
-        matched.size() == 1 && std::all_of(m.begin(), m.end(), [tight](const Match& v) { return v.gap <= tight; });
     if (!whole && run_length(s, r) < o.min_stretch_px) {
       assign(m, r, {});
       continue;

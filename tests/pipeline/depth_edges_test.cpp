@@ -41,14 +41,18 @@ struct Scene {
     return compute_view(analysed.cloud, analysed.surface, analysed.scene, boundary.lines, camera, o, border);
   }
 
+  /// The contour points of the view along -x.
+  ContourPoints contour_points(const ContourOptions& o) const {
+    const Camera camera = make_camera(analysed.cloud.positions, analysed.cloud.origin, kAlongMinusX);
+    return find_contour_points(analysed.cloud.positions, analysed.cloud.normals, analysed.surface.neighbourhoods,
+                               analysed.surface.spacing, camera, o, 0.f, border);
+  }
+
   /// The rim samples of the view along -x.
   std::vector<Vec3f> rim_samples(float depth_edge_factor) const {
     ContourOptions o;
     o.depth_edge_factor = depth_edge_factor;
-    const Camera camera = make_camera(analysed.cloud.positions, analysed.cloud.origin, kAlongMinusX);
-    return find_contour_points(analysed.cloud.positions, analysed.cloud.normals, analysed.surface.neighbourhoods,
-                               analysed.surface.spacing, camera, o, 0.f, border)
-        .rim;
+    return contour_points(o).rim;
   }
 
   std::size_t edge_points() const {
@@ -128,17 +132,14 @@ TEST(DepthEdges, DepthEdgeChainsKeepTheCleanMinimumLengthOnADenoisedCloud) {
   const Scene scene(in_front_of_wall(test::sphere(1.f, {.n = 30000}), 0.f, 0.12f));
   ContourOptions o;
   o.denoised_min_length_factor = 1e6f;
-  const Camera camera = make_camera(scene.analysed.cloud.positions, scene.analysed.cloud.origin, kAlongMinusX);
-  ContourPoints points = find_contour_points(scene.analysed.cloud.positions, scene.analysed.cloud.normals,
-                                             scene.analysed.surface.neighbourhoods, scene.analysed.surface.spacing,
-                                             camera, o, 0.f, scene.border);
+  ContourPoints points = scene.contour_points(o);
   ASSERT_LT(points.depth_edges_begin, points.rim.size());
   const auto interior_length = [&] {
     float length = 0;
     for (const Polyline& line :
          connect_contours(points, scene.analysed.cloud.positions, scene.analysed.surface.spacing, o, /*denoised=*/true)
              .interior)
-      for (std::size_t v = 1; v < line.points.size(); ++v) length += (line.points[v] - line.points[v - 1]).norm();
+      length += line.length();
     return length;
   };
   EXPECT_GT(interior_length(), 0.9f * 2 * kPi);
