@@ -2,7 +2,6 @@
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <cmath>
@@ -86,20 +85,6 @@ double noise_estimate(const std::vector<double>& residual, std::vector<double>& 
   return std::sqrt(noise_share) * outer_median;
 }
 
-/// body(), with `tree` built beside it when `wanted` (the build is serial: it takes a core the body shares).
-template <class Body>
-void beside_build(const neighbourhood::KdTree* tree, bool wanted, const Body& body) {
-  tbb::task_group build;
-  if (tree && wanted) build.run([tree] { tree->build(); });
-  try {
-    body();
-  } catch (...) {
-    build.wait();
-    throw;
-  }
-  build.wait();
-}
-
 Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                    const neighbourhood::Neighbourhoods& neighbourhoods, const neighbourhood::KdTree* given_tree,
                    const CurvatureOptions& options, const DenoisedCopy& denoised) {
@@ -169,21 +154,23 @@ Curvature estimate(const std::vector<Vec3f>& points, const std::vector<Vec3f>& n
     const bool adapt = options.adapt_to_noise && options.noise_tolerance > 0 && shared > 0;
     const double rho = adapt ? density(neighbourhoods) : 0;
     const auto wanted_for = [&](double sigma) { return 8.0 * sigma * std::sqrt(kPi * rho) / options.noise_tolerance; };
-    // Where a sample of 16k fits already calls for twice the cap, the wide fit is capped whatever the full first
-    // pass would say, and it replaces every fit of that pass: skip it (a fifth of a noisy cloud's curvature time).
+    const auto fit_size = [&](double wanted) {
+      return std::min({static_cast<std::size_t>(std::ceil(wanted)), options.max_k, available});
+    };
+    // The fit over the shared neighbourhoods at every point only serves σ̂ where the wide fit follows, and that
+    // replaces every one of its fits. Where a sample of 16k fits already calls for the wide fit, σ̂ is the sample's
+    // (within about 1% of the full median's): the full pass was a third of a noisy cloud's curvature time.
     const float sampled = adapt ? estimate_noise(points, normals, neighbourhoods) : 0.f;
-    if (adapt && wanted_for(sampled) >= 2.0 * static_cast<double>(options.max_k) && options.max_k < available) {
+    if (adapt && 4 * fit_size(wanted_for(sampled)) > 5 * shared) {
       result.noise_sigma = sampled;
     } else {
       if (shared >= kInnerFit + 4) inner_residual.resize((n + stride - 1) / stride);
-      // Where the sample already calls for the wide refit, its tree is built beside the first pass.
-      beside_build(given_tree, adapt && 4 * wanted_for(sampled) > 5.0 * static_cast<double>(shared),
-                   [&] { run_shared(shared); });
+      run_shared(shared);
       result.noise_sigma = static_cast<float>(noise_estimate(residual, inner_residual, stride, shared));
     }
     if (adapt) {
       const double wanted = wanted_for(result.noise_sigma);
-      const std::size_t k = std::min({static_cast<std::size_t>(std::ceil(wanted)), options.max_k, available});
+      const std::size_t k = fit_size(wanted);
       // The fit's curvature noise falls as 1/√k: under 1.25·shared (< 11% less noise) the refit is not worth it.
       if (4 * k > 5 * shared) run_wide(k);
       if (wanted > static_cast<double>(options.max_k) && options.max_k < available)

@@ -1,18 +1,20 @@
 #include "group_fit.h"
 
+#include <tbb/parallel_sort.h>
+#include <tbb/task_group.h>
+
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <array>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <span>
-#include <tbb/parallel_sort.h>
 
 #include "common.h"
-#include "graph_curvature.h"
 #include "core/nth_value.h"
 #include "core/parallel_chunks.h"
+#include "graph_curvature.h"
 
 namespace pcsketch::differential::detail {
 
@@ -268,7 +270,17 @@ Groups make_groups(const std::vector<Vec3f>& points, const neighbourhood::Neighb
 std::size_t fit_groups(const std::vector<Vec3f>& points, const std::vector<Vec3f>& normals,
                        const neighbourhood::Neighbourhoods& shared, const neighbourhood::KdTree& tree,
                        const GroupFitOptions& options, const PointFitFn& point_fit, Curvature& result) {
-  const Groups groups = make_groups(points, shared, options.fit, options.reach, kMaxGroup);
+  // The tree's build is serial: it takes one core while the grouping's sort takes the other.
+  tbb::task_group build;
+  build.run([&tree] { tree.build(); });
+  Groups groups;
+  try {
+    groups = make_groups(points, shared, options.fit, options.reach, kMaxGroup);
+  } catch (...) {
+    build.wait();
+    throw;
+  }
+  build.wait();
   const std::size_t count = groups.size();
   std::vector<char> fell_back(count, 0);
   pcsketch::detail::parallel_chunks(count, options.progress, options.stage, [&](std::size_t begin, std::size_t end) {

@@ -7,9 +7,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "pcsketch/differential/curvature.h"
+#include "pcsketch/differential/normals.h"
 #include "pcsketch/differential/surface.h"
+#include "pcsketch/neighbourhood/neighbourhoods.h"
 #include "support/analytic_shapes.h"
 
 namespace pcsketch::differential {
@@ -79,6 +82,36 @@ TEST_P(DenoiseSphere, ComesBackToItsRadiusAndCurvature) {
 
 INSTANTIATE_TEST_SUITE_P(TwoNoiseLevels, DenoiseSphere,
                          ::testing::Values(NoisySphere{0.001f, 0.10f, 3.f}, NoisySphere{0.003f, 0.20f, 6.f}));
+
+// The filter and the projection take the neighbours four at a time and the rest one at a time. Each neighbour's
+// weight is a function of the pair alone, so a list's order does not matter: its nearest k − 1 reversed (the last one
+// sets the reach), another set falls to the single ones, and the points move the same to within rounding.
+TEST(Denoise, TheOrderOfANeighbourListDoesNotMatter) {
+  for (const std::size_t k : {7u, 14u, 16u}) {
+    PointCloud cloud = noisy_sphere(0.001f, 13);
+    std::optional<neighbourhood::KdTree> tree;
+    neighbourhood::Neighbourhoods lists = neighbourhood::index_neighbourhoods(cloud.positions, tree, {.k = k});
+    neighbourhood::Neighbourhoods reversed = lists;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      std::reverse(reversed.indices.begin() + static_cast<std::ptrdiff_t>(i * k),
+                   reversed.indices.begin() + static_cast<std::ptrdiff_t>(i * k + k - 1));
+      std::reverse(reversed.distances.begin() + static_cast<std::ptrdiff_t>(i * k),
+                   reversed.distances.begin() + static_cast<std::ptrdiff_t>(i * k + k - 1));
+    }
+    const std::vector<Vec3f> normals = estimate_normals(cloud.positions, lists).normals;
+    const float spacing = 0.02f;  // about the sphere's at 20k points; any trigger under the noise will do
+    const DenoiseOptions options{.min_noise_factor = 0.01f};
+    std::vector<Vec3f> a = cloud.positions, b = cloud.positions;
+    ASSERT_TRUE(denoise(a, lists, spacing, normals, options).applied) << k << " neighbours";
+    ASSERT_TRUE(denoise(b, reversed, spacing, normals, options).applied) << k << " neighbours";
+    float largest = 0, moved = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      largest = std::max(largest, (a[i] - b[i]).norm());
+      moved = std::max(moved, (a[i] - cloud.positions[i]).norm());
+    }
+    EXPECT_LT(largest, 1e-4f * moved) << k << " neighbours; the largest move " << moved;
+  }
+}
 
 TEST(Denoise, NoisyCubeFacesStayFlatUpToTheEdges) {
   const float sigma = 0.001f * 2.f * std::sqrt(3.f);  // 0.1% of the diagonal
