@@ -210,12 +210,32 @@ neighbourhood::Neighbourhoods wider_lists(const std::vector<Vec3f>& points, cons
   return wide;
 }
 
+/// True when vote(i) would find nothing, shown without the tensor's eigenproblem. For a unit n = given[i], the tensor
+/// T's Rayleigh quotient q = nᵀTn = Σ (n·n_j)² is at most λ₁c² + λ₂(1 − c²), c the cosine of n with T's dominant
+/// direction and λ₂ ≤ t − λ₁ (t its trace). A vote needs λ₁ > consensus·t and c² < (1 − cutoff)² = s, and over those
+/// q/t stays under max((1 − consensus) + (2·consensus − 1)·s, s); at or over it (most points: their normals agree
+/// with their neighbours') no vote can be. The margin covers the float sums.
+bool agrees_with_neighbours(std::size_t i, const std::vector<Vec3f>& given, const neighbourhood::Neighbourhoods& nbh,
+                            double consensus, float cutoff) {
+  const double s = (1.0 - cutoff) * (1.0 - cutoff);
+  const double bound = std::max((1 - consensus) + (2 * consensus - 1) * s, s) + 1e-3;
+  const Vec3f& n = given[i];
+  float q = 0, t = 0;
+  for (const std::uint32_t j : nbh.of(i)) {
+    const float d = n.dot(given[j]);
+    q += d * d;
+    t += given[j].squaredNorm();
+  }
+  return static_cast<double>(q) >= bound * static_cast<double>(t);
+}
+
 /// The consensus of point i's neighbours if `given[i]` lies beyond the filter's cutoff from it, else nothing: the
 /// dominant eigenvector of Σ n_j n_jᵀ over its list (a normal voting tensor, sign free), signed as `given[i]`, where
 /// one direction holds most of it.
 std::optional<Vec3f> vote(std::size_t i, const std::vector<Vec3f>& given, const neighbourhood::Neighbourhoods& nbh,
                           float cutoff) {
   constexpr double kConsensus = 0.7;  // share of the tensor's trace along its dominant direction
+  if (agrees_with_neighbours(i, given, nbh, kConsensus, cutoff)) return std::nullopt;
   Eigen::Matrix3d tensor = Eigen::Matrix3d::Zero();
   for (const std::uint32_t j : nbh.of(i)) {
     const Vec3d nj = given[j].cast<double>();
