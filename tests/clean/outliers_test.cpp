@@ -156,9 +156,9 @@ TEST(Outliers, ASmallCloudIsItsOwnSurface) {
 
 // A stray point hovering over a surface has that surface as its neighbours, so only its offset from their plane gives
 // it away: on a clean plane the limit is offset_factor × m (2 m), which the stage settles from bounds on the
-// offsets, solving the plane of the few points near the limit only. Noise of σ = 0.4 m raises the median offset,
-// and so the limit, over that: the same points are then told apart with the median of the exact offsets, over every
-// point (8k) or over a sample of 16k (40k points).
+// offsets, solving the plane of the few points near the limit only. Noise of σ = 0.4 m moves each point's mean, so
+// the bounds' median no longer settles the limit: it comes from the median of the exact offsets, over every point
+// (8k) or over a sample of 16k (40k points), and the same points are told apart.
 TEST(Outliers, HoveringPointsAreOffTheSurfaceBeyondTheLimit) {
   for (const std::size_t points : {8000u, 40000u}) {
     const PointCloud base = test::plane(1.f, {.n = points, .seed = 14});
