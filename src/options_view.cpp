@@ -134,6 +134,11 @@ void add_contours(Builder& b) {
          .range = non_negative(1e6),
          .unit = "units of h",
          .help = "On a denoised cloud, interior contours shorter than this are left out (noise squiggles)"});
+  b.add(PCSKETCH_OPTION(view.contours.bend_min_f),
+        {.flag = "--contour-bend",
+         .range = non_negative(),
+         .help = "On a denoised cloud, short interior contours are kept where n.v bends across them: the F statistic "
+                 "of its plane fit reaches this (0: every short contour kept)"});
   b.add(PCSKETCH_OPTION(view.contours.depth_edge_factor),
         {.flag = "--depth-edges",
          .range = non_negative(1e6),

@@ -43,16 +43,19 @@ std::optional<Vec3f> candidate_gap(const std::vector<Vec3f>& positions, const st
   if (!(n.squaredNorm() > 0.5f)) return std::nullopt;
   Vec3f u, v;
   tangent_frame(n, u, v);
-  dirs.clear();
+  // Every direction is written and the usable ones counted: no branch on the test, which is rarely false.
+  dirs.resize(nbh.k);
+  std::size_t count = 0;
   std::uint16_t sectors = 0;
   for (const std::uint32_t j : nbh.of(i)) {
     const Vec3f d = positions[j] - positions[i];
     const Vec2f c(d.dot(u), d.dot(v));
-    if (c.squaredNorm() > 1e-12f * d.squaredNorm() && c.squaredNorm() > 0) {
-      dirs.push_back(c);
-      sectors |= pcsketch::detail::sector_bit(c);
-    }
+    const bool usable = c.squaredNorm() > 1e-12f * d.squaredNorm() && c.squaredNorm() > 0;
+    dirs[count] = c;
+    count += usable;
+    sectors |= static_cast<std::uint16_t>(usable ? pcsketch::detail::sector_bit(c) : 0);
   }
+  dirs.resize(count);
   // Neighbours all round leave no run of empty 22.5° sectors as wide as the gap: most points settle here unsorted.
   const float threshold = o.gap_threshold_deg * kDegToRad;
   if (pcsketch::detail::sectors_rule_out_gap(sectors, threshold)) return std::nullopt;

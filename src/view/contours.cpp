@@ -11,14 +11,15 @@
 #include <optional>
 #include <span>
 
-#include "pcsketch/core/error.h"
+#include "contour_walk.h"
 #include "core/nth_value.h"
 #include "core/progress.h"
-#include "contour_walk.h"
 #include "depth_edges.h"
 #include "outline_bridges.h"
 #include "outline_points.h"
+#include "pcsketch/core/error.h"
 #include "point_grid.h"
+#include "rim_bending.h"
 
 namespace pcsketch::view {
 
@@ -187,12 +188,13 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
   const std::vector<char> covered = covered_by_outline(cp.rim, outline, h, dedupe);
   std::vector<Vec3f> rim;
   std::vector<std::uint32_t> rim_point;
-  std::vector<char> depth_edge;
+  std::vector<char> depth_edge, bends;
   for (std::size_t r = 0; r < cp.rim.size(); ++r) {
     if (covered[r]) continue;
     rim.push_back(cp.rim[r]);
     rim_point.push_back(cp.rim_point[r]);
     depth_edge.push_back(r >= cp.depth_edges_begin);
+    bends.push_back(r < cp.rim_bends.size() && cp.rim_bends[r]);
   }
   if (rim.empty()) return {};
 
@@ -243,14 +245,16 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
     Polyline line;
     line.kind = LineKind::Contour;
     line.closed = closed;
-    std::size_t edges = 0;
+    std::size_t edges = 0, bending = 0;
     for (const std::uint32_t c : chain) {
       line.points.push_back(rim[c]);
       line.point_index.push_back(rim_point[c]);
       edges += depth_edge[c] ? 1 : 0;
+      bending += bends[c] ? 1 : 0;
     }
     // A chain of depth edges is no squiggle of noisy normals: it keeps the clean clouds' minimum length.
-    const float min_length = 2 * edges >= chain.size() ? o.min_length_factor : min_length_factor;
+    const bool firm = 2 * edges >= chain.size() || 2 * bending >= chain.size();
+    const float min_length = firm ? o.min_length_factor : min_length_factor;
     if (chain.size() >= 3 && polyline_length(line.points, closed) >= min_length * h) lines.push_back(std::move(line));
   }
   return lines;
@@ -281,10 +285,11 @@ std::vector<float> spacing_units(const neighbourhood::Neighbourhoods& neighbourh
   return unit;
 }
 
-/// The interior rim samples (see ContourPoints::rim) and the points they were made from, into `cp`.
+/// The interior rim samples (see ContourPoints::rim) and the points they were made from, into `cp`; on a denoised
+/// cloud whether each bends too.
 void add_rim_samples(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                      const neighbourhood::Neighbourhoods& neighbourhoods, const Camera& camera, const ContourOptions& o,
-                     float normal_noise, ContourPoints& cp) {
+                     float normal_noise, bool denoised, ContourPoints& cp) {
   const std::size_t n = positions.size();
   // f = n·v < 0 faces the viewer; a rim sample sits at the zero crossings between a point and its neighbours
   // facing the other way (averaged), i.e. on the occluding contour generator. Points on both sides make samples:
@@ -342,6 +347,9 @@ void add_rim_samples(const std::vector<Vec3f>& positions, const std::vector<Vec3
       cp.rim.push_back(sample[i]);
       cp.rim_point.push_back(static_cast<std::uint32_t>(i));
     }
+  // Read only where short contours are held to denoised_min_length_factor.
+  if (denoised)
+    cp.rim_bends = detail::rim_bends(positions, normals, neighbourhoods, facing, cp.rim_point, m, o.bend_min_f);
 }
 
 }  // namespace
@@ -349,7 +357,7 @@ void add_rim_samples(const std::vector<Vec3f>& positions, const std::vector<Vec3
 ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                                   const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
                                   const Camera& camera, const ContourOptions& o, float normal_noise,
-                                  const std::vector<std::uint8_t>& border) {
+                                  const std::vector<std::uint8_t>& border, bool denoised) {
   if (!(spacing > 0) || !std::isfinite(spacing)) throw Error("contours: the mean spacing h must be positive");
   const std::size_t n = positions.size();
   if (!border.empty() && (border.size() != n || neighbourhoods.size() != n))
@@ -378,7 +386,7 @@ ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std
   cp.boundary = std::move(outline.boundary);
   cp.outward = std::move(outline.outward);
   if (o.interior && n > 0) {
-    add_rim_samples(positions, normals, neighbourhoods, camera, o, normal_noise, cp);
+    add_rim_samples(positions, normals, neighbourhoods, camera, o, normal_noise, denoised, cp);
     cp.depth_edges_begin = cp.rim.size();
     detail::add_depth_edge_samples(positions, normals, neighbourhoods, border, spacing, camera, o, cp);
   }

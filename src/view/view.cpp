@@ -42,7 +42,7 @@ ViewResult compute_view(const PointCloud& cloud, const differential::Surface& su
   auto start = std::chrono::steady_clock::now();
   const ContourOptions contour_options = pcsketch::detail::with_progress(options.contours, options.progress);
   result.contour_points = find_contour_points(cloud.positions, cloud.normals, surface.neighbourhoods, surface.spacing,
-                                              camera, contour_options, surface.normal_noise, border);
+                                              camera, contour_options, surface.normal_noise, border, surface.denoised);
   result.timings.contour_points = seconds_since(start);
 
   start = std::chrono::steady_clock::now();

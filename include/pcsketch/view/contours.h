@@ -105,6 +105,13 @@ struct ContourOptions {
   /// for 0.01–0.07 of recall; on clean clouds (not denoised) it costs 0.02–0.06 of recall, so they keep
   /// min_length_factor.
   float denoised_min_length_factor = 20.0f;
+  /// Beyond the paper: on a denoised cloud, an interior contour shorter than denoised_min_length_factor keeps
+  /// min_length_factor when most of its rim samples bend: n·v over a sample's point, its interior_neighbours and
+  /// theirs changes with position across the tangent plane (the F statistic of a plane fit against a constant, 2 and
+  /// about 40 degrees of freedom, reaches this). Noise on a face seen nearly edge-on flips the sign of n·v with no
+  /// such trend; a short rim of fine relief has one. 16 is far above what noise alone reaches (F(2, 40) exceeds 8.3
+  /// once in 1000). 0: every short contour is kept; 1e30: the length rule alone. docs/views.md, "Bending".
+  float bend_min_f = 16.0f;
   /// Beyond the paper: depth edges. A scan recorded from one side has no points past its interior contours, so n·v
   /// never changes sign there. A point is a rim sample when the surface ends at it (the border search marks it:
   /// find_contour_points' `border` is not 0 there; no border, no depth edges), it does not face the viewer
@@ -140,6 +147,9 @@ struct ContourPoints {
   std::vector<Vec2f> outward;          ///< #B: unit image direction of each boundary point's largest empty gap
   std::vector<Vec3f> rim;              ///< #R: interior rim samples (zero crossings of n·v), relative coordinates
   std::vector<std::uint32_t> rim_point;  ///< #R: the cloud point each rim sample was made from
+  /// Per interior rim sample (those before depth_edges_begin) of a denoised cloud: whether n·v bends across it (see
+  /// bend_min_f). Empty otherwise: then no sample counts as bending.
+  std::vector<char> rim_bends;
   /// Rim samples from this index on are depth edges' (see depth_edge_factor); past the end: none.
   std::size_t depth_edges_begin = std::numeric_limits<std::size_t>::max();
 };
@@ -156,12 +166,14 @@ struct ContourPoints {
 ///   drawn (2: a small hole) and their nearest interior_neighbours are no outline points: the surface ends there, and
 ///   such a hole is not drawn at all. Along a drawn border (1) the outline may run: the boundary line is drawn over
 ///   it (fusion), and where its tracing left a stretch of a sparse border out, the outline still closes.
+/// @param denoised the cloud was denoised (Surface::denoised): ContourPoints::rim_bends is then filled, for
+///   connect_contours with the same flag
 /// @throws pcsketch::Error for a non-positive spacing, missing normals/neighbourhoods when interior is on, or a
 ///   border of the wrong size.
 ContourPoints find_contour_points(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
                                   const neighbourhood::Neighbourhoods& neighbourhoods, float spacing,
                                   const Camera& camera, const ContourOptions& options = {}, float normal_noise = 0,
-                                  const std::vector<std::uint8_t>& border = {});
+                                  const std::vector<std::uint8_t>& border = {}, bool denoised = false);
 
 /// The contour lines of one view, all of kind Contour.
 struct ContourLines {
@@ -176,7 +188,7 @@ struct ContourLines {
 /// Chains the contour points into polylines (the "contour connection" step): the outline first, then the interior
 /// contours not already covered by it. Deterministic.
 /// @param denoised the cloud was denoised (interior contours then need denoised_min_length_factor, unless they are
-///        mostly depth edges)
+///        mostly depth edges or bend: ContourPoints::rim_bends, which find_contour_points fills when told so too)
 ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec3f>& positions, float spacing,
                               const ContourOptions& options = {}, bool denoised = false);
 
