@@ -252,7 +252,8 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
       edges += depth_edge[c] ? 1 : 0;
       bending += bends[c] ? 1 : 0;
     }
-    // A chain of depth edges is no squiggle of noisy normals: it keeps the clean clouds' minimum length.
+    // A chain of depth edges, or of samples across which n·v bends, is no squiggle of noisy normals: it keeps the
+    // clean clouds' minimum length.
     const bool firm = 2 * edges >= chain.size() || 2 * bending >= chain.size();
     const float min_length = firm ? o.min_length_factor : min_length_factor;
     if (chain.size() >= 3 && polyline_length(line.points, closed) >= min_length * h) lines.push_back(std::move(line));
