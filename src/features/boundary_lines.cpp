@@ -16,6 +16,7 @@
 
 #include "core/angular_gap.h"
 #include "core/parallel_chunks.h"
+#include "core/tangent_frame.h"
 #include "core/union_find.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
@@ -28,12 +29,6 @@ constexpr float kDegToRad = 3.14159265358979f / 180.f;
 constexpr std::uint8_t kBorder = 1, kHole = 2;
 constexpr std::uint32_t kMinRimPoints = 8;
 
-/// Right-handed orthonormal tangent frame (u, v) of a unit normal.
-void tangent_frame(const Vec3f& n, Vec3f& u, Vec3f& v) {
-  u = (std::abs(n.x()) < 0.9f ? Vec3f::UnitX() : Vec3f::UnitY()).cross(n).normalized();
-  v = n.cross(u);
-}
-
 /// The gap's bisector in 3D when point i is a border candidate: its neighbours, projected onto its tangent plane,
 /// leave a gap over the threshold, none of them reaches far towards it, and none lies across a fold.
 std::optional<Vec3f> candidate_gap(const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
@@ -42,7 +37,7 @@ std::optional<Vec3f> candidate_gap(const std::vector<Vec3f>& positions, const st
   const Vec3f& n = normals[i];
   if (!(n.squaredNorm() > 0.5f)) return std::nullopt;
   Vec3f u, v;
-  tangent_frame(n, u, v);
+  pcsketch::detail::tangent_frame(n, u, v);
   // Every direction is written and the usable ones counted: no branch on the test, which is rarely false.
   dirs.resize(nbh.k);
   std::size_t count = 0;

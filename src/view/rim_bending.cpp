@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/tangent_frame.h"
+
 namespace pcsketch::view::detail {
 
 namespace {
@@ -16,8 +18,8 @@ constexpr std::size_t kFewest = 8;
 /// The F statistic of the plane fit of `facing` over `ring` (distinct points) in the tangent plane of `origin`.
 double plane_f(const std::vector<Vec3f>& positions, const std::vector<float>& facing, const Vec3f& origin,
                const Vec3f& normal, const std::vector<std::uint32_t>& ring) {
-  const Vec3f u = (std::abs(normal.x()) < 0.9f ? Vec3f::UnitX() : Vec3f::UnitY()).cross(normal).normalized();
-  const Vec3f w = normal.cross(u);
+  Vec3f u, w;
+  pcsketch::detail::tangent_frame(normal, u, w);
   // Centred sums in double: the scatter of f is small against its mean on a face seen edge-on.
   double mx = 0, my = 0, mf = 0;
   for (const std::uint32_t s : ring) {
