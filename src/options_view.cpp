@@ -139,6 +139,12 @@ void add_contours(Builder& b) {
          .range = non_negative(),
          .help = "On a denoised cloud, short interior contours are kept where n.v bends across them: the F statistic "
                  "of its plane fit reaches this (0: every short contour kept)"});
+  b.add(PCSKETCH_OPTION(view.contours.denoised_min_bending),
+        {.flag = "--contour-min-bending",
+         .range = closed(0, 1),
+         .unit = "share of samples",
+         .help = "On a denoised cloud, interior contours of which fewer samples bend are left out at any length "
+                 "(noise on sheets thinner than the noise; 0: off)"});
   b.add(PCSKETCH_OPTION(view.contours.depth_edge_factor),
         {.flag = "--depth-edges",
          .range = non_negative(1e6),

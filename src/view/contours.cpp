@@ -182,8 +182,7 @@ std::vector<char> covered_by_outline(const std::vector<Vec3f>& rim, const std::v
 /// Chains the interior rim samples in 3D with the paper's rule (nearest ahead within z_max of the direction line),
 /// after dropping those the outline already covers.
 std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<Polyline>& outline, float h,
-                                     const ContourOptions& o, float min_length_factor,
-                                     pcsketch::detail::ProgressSteps& steps) {
+                                     const ContourOptions& o, bool denoised, pcsketch::detail::ProgressSteps& steps) {
   const float dedupe = o.interior_dedupe_factor * h;
   const std::vector<char> covered = covered_by_outline(cp.rim, outline, h, dedupe);
   std::vector<Vec3f> rim;
@@ -253,9 +252,13 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
       bending += bends[c] ? 1 : 0;
     }
     // A chain of depth edges, or of samples across which n·v bends, is no squiggle of noisy normals: it keeps the
-    // clean clouds' minimum length.
-    const bool firm = 2 * edges >= chain.size() || 2 * bending >= chain.size();
-    const float min_length = firm ? o.min_length_factor : min_length_factor;
+    // clean clouds' minimum length. On a denoised cloud one that hardly bends is noise at any length (the sides of a
+    // sheet thinner than the noise interleave).
+    const bool edge_chain = 2 * edges >= chain.size();
+    const auto bend_share = static_cast<float>(bending) / static_cast<float>(chain.size());
+    if (denoised && !edge_chain && bend_share < o.denoised_min_bending) continue;
+    const bool firm = !denoised || edge_chain || 2 * bending >= chain.size();
+    const float min_length = firm ? o.min_length_factor : o.denoised_min_length_factor;
     if (chain.size() >= 3 && polyline_length(line.points, closed) >= min_length * h) lines.push_back(std::move(line));
   }
   return lines;
@@ -402,9 +405,7 @@ ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec
                                         points.boundary.size() + (options.interior ? points.rim.size() : 0));
   lines.outline = trace_outline(points, positions, options, steps);
   detail::bridge_outline(points, positions, lines.outline, options);
-  if (options.interior)
-    lines.interior = trace_interior(points, lines.outline, spacing, options,
-                                    denoised ? options.denoised_min_length_factor : options.min_length_factor, steps);
+  if (options.interior) lines.interior = trace_interior(points, lines.outline, spacing, options, denoised, steps);
   steps.finish();
   return lines;
 }

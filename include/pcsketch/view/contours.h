@@ -110,8 +110,15 @@ struct ContourOptions {
   /// theirs changes with position across the tangent plane (the F statistic of a plane fit against a constant, 2 and
   /// about 40 degrees of freedom, reaches this). Noise on a face seen nearly edge-on flips the sign of n·v with no
   /// such trend; a short rim of fine relief has one. 16 is far above what noise alone reaches (F(2, 40) exceeds 8.3
-  /// once in 1000). 0: every short contour is kept; 1e30: the length rule alone. docs/views.md, "Bending".
+  /// once in 1000). 0: every short contour is kept; 1e30: none bends (with denoised_min_bending 0, the length rule
+  /// alone). docs/views.md, "Bending".
   float bend_min_f = 16.0f;
+  /// Beyond the paper: on a denoised cloud, an interior contour fewer of whose rim samples than this share bend (see
+  /// bend_min_f) is dropped whatever its length, unless it is mostly depth edges. Where a sheet is thinner than a few
+  /// σ of noise (the held-out blade at σ = 0.2%: 2.5σ thick), its two sides interleave, n·v changes sign all over it
+  /// and the squiggles chain past any length; under 30% of their samples bend, where true rims of 20 h or more
+  /// have over 30% on nearly all their length. 0: off. docs/views.md, "Bending".
+  float denoised_min_bending = 0.3f;
   /// Beyond the paper: depth edges. A scan recorded from one side has no points past its interior contours, so n·v
   /// never changes sign there. A point is a rim sample when the surface ends at it (the border search marks it:
   /// find_contour_points' `border` is not 0 there; no border, no depth edges), it does not face the viewer
@@ -188,7 +195,8 @@ struct ContourLines {
 /// Chains the contour points into polylines (the "contour connection" step): the outline first, then the interior
 /// contours not already covered by it. Deterministic.
 /// @param denoised the cloud was denoised (interior contours then need denoised_min_length_factor, unless they are
-///        mostly depth edges or bend: ContourPoints::rim_bends, which find_contour_points fills when told so too)
+///        mostly depth edges or bend: ContourPoints::rim_bends, which find_contour_points fills when told so too;
+///        and denoised_min_bending)
 ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec3f>& positions, float spacing,
                               const ContourOptions& options = {}, bool denoised = false);
 
