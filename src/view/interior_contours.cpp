@@ -57,6 +57,7 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
     bends.push_back(r < cp.rim_bends.size() && cp.rim_bends[r]);
   }
   if (rim.empty()) return {};
+  const bool bends_known = denoised && !cp.rim_bends.empty();
 
   const std::vector<float> scale(rim.size(), h);
   const float radius = o.interior_trace_radius_factor * h;
@@ -114,10 +115,10 @@ std::vector<Polyline> trace_interior(const ContourPoints& cp, const std::vector<
     }
     // A chain of depth edges, or of samples across which n·v bends, is no squiggle of noisy normals: it keeps the
     // clean clouds' minimum length. On a denoised cloud one that hardly bends is noise at any length (the sides of a
-    // sheet thinner than the noise interleave).
+    // sheet thinner than the noise interleave), when the bends were computed.
     const bool edge_chain = 2 * edges >= chain.size();
     const auto bend_share = static_cast<float>(bending) / static_cast<float>(chain.size());
-    if (denoised && !edge_chain && bend_share < o.denoised_min_bending) continue;
+    if (bends_known && !edge_chain && bend_share < o.denoised_min_bending) continue;
     const bool firm = !denoised || edge_chain || 2 * bending >= chain.size();
     const float min_length = firm ? o.min_length_factor : o.denoised_min_length_factor;
     if (chain.size() >= 3 && polyline_length(line.points, closed) >= min_length * h) lines.push_back(std::move(line));

@@ -111,6 +111,29 @@ TEST(Contours, TorusAlongItsAxisHasRimAndHole) {
   EXPECT_NEAR(radii[1], (R + r) * view.camera.scale, 2.f);
 }
 
+// Points found without the bending test (ContourPoints::rim_bends empty), then connected as a denoised cloud's: the
+// rule on the share of samples that bend needs the bends, so it stays out, and the interior contours are the clean
+// rule's that reach denoised_min_length_factor. Seen nearly edge-on, the torus's tube hides part of itself.
+TEST(Contours, DenoisedConnectionWithoutBendsKeepsTheLongInteriorContours) {
+  const Analysed torus(test::torus(1.f, 0.35f, {.n = 30000}));
+  const Camera camera = make_camera(torus.cloud.positions, torus.cloud.origin, {.direction = Vec3d(0, 1, 0.3)});
+  const float h = torus.surface.spacing;
+  const ContourOptions o;
+  const ContourPoints cp =
+      find_contour_points(torus.cloud.positions, torus.cloud.normals, torus.surface.neighbourhoods, h, camera, o);
+  ASSERT_TRUE(cp.rim_bends.empty());
+  const auto lengths = [&](bool denoised, float at_least) {
+    std::vector<float> out;
+    for (const Polyline& line : connect_contours(cp, torus.cloud.positions, h, o, denoised).interior)
+      if (line.length() >= at_least) out.push_back(line.length());
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  const std::vector<float> long_clean = lengths(false, o.denoised_min_length_factor * h);
+  ASSERT_FALSE(long_clean.empty());
+  EXPECT_EQ(lengths(true, 0.f), long_clean);
+}
+
 // A tube seen along its axis: its whole side projects onto one circle, hundreds of points per pixel of it (as a CAD
 // part's faces along a front view). One point per quarter-spacing image cell is asked, and the outline is still
 // the circle, closed and within a pixel.

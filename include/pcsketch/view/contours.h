@@ -196,7 +196,7 @@ struct ContourLines {
 /// contours not already covered by it. Deterministic.
 /// @param denoised the cloud was denoised (interior contours then need denoised_min_length_factor, unless they are
 ///        mostly depth edges or bend: ContourPoints::rim_bends, which find_contour_points fills when told so too;
-///        and denoised_min_bending)
+///        and, where rim_bends is filled, denoised_min_bending)
 ContourLines connect_contours(const ContourPoints& points, const std::vector<Vec3f>& positions, float spacing,
                               const ContourOptions& options = {}, bool denoised = false);
 
