@@ -116,8 +116,8 @@ struct ContourOptions {
   /// Beyond the paper: on a denoised cloud, an interior contour fewer of whose rim samples than this share bend (see
   /// bend_min_f) is dropped whatever its length, unless it is mostly depth edges. Where a sheet is thinner than a few
   /// σ of noise (the held-out blade at σ = 0.2%: 2.5σ thick), its two sides interleave, n·v changes sign all over it
-  /// and the squiggles chain past any length; under 30% of their samples bend, where true rims of 20 h or more
-  /// have over 30% on nearly all their length. 0: off. docs/views.md, "Bending".
+  /// and the squiggles chain past any length; under 30% of their samples bend, where on seven other models the
+  /// chains of 20 h or more have over 30% on 89–100% of their length. 0: off. docs/views.md, "Long squiggles".
   float denoised_min_bending = 0.3f;
   /// Beyond the paper: depth edges. A scan recorded from one side has no points past its interior contours, so n·v
   /// never changes sign there. A point is a rim sample when the surface ends at it (the border search marks it:
