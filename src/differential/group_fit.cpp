@@ -182,11 +182,12 @@ struct GroupFitter {
   }
 
   /// The group's height field: the quadric, plus the cubic terms shrunk towards 0 by how far they stand out of the
-  /// noise (weight 1 − cubic_shrink·σ̂²/ΔRSS, at least 0; ΔRSS is the residual the 4 cubic terms remove, σ̂²χ²₄ on
-  /// pure noise). Away from the group's centre the cubic terms add their own noise: on a noisy sphere they only add
-  /// it, on a shape whose curvature changes across the group they follow the change. None where even the cubic leaves over `misfit_factor` × σ̂² per degree of
-  /// freedom: a crease, or a shape changing faster than a cubic follows, lies in the support. There the cubic
-  /// bends towards the face beyond the crease, and the point's own support, centred on it, is what places the crest.
+  /// noise (weight 1 − cubic_shrink·σ̂²/ΔRSS, at least 0; ΔRSS is the residual the 4 cubic terms remove, σ̂²χ²₄ on pure
+  /// noise). Away from the group's centre the cubic terms add their own noise: on a noisy sphere they only add it, on a
+  /// shape whose curvature changes across the group they follow the change. None where even the cubic leaves over
+  /// `misfit_factor` × σ̂² per degree of freedom: a crease, or a shape changing faster than a cubic follows, lies in
+  /// the support. There the cubic bends towards the face beyond the crease, and the point's own support, centred on it,
+  /// is what places the crest.
   std::optional<Vec10> solve(const Mat10& normal_matrix, const Vec10& rhs, double zz, std::size_t count) const {
     if (count <= 10) return std::nullopt;
     const Eigen::Matrix<double, 6, 1> quadric_rhs = rhs.head<6>();
