@@ -53,6 +53,11 @@ void add_cleaning(Builder& b) {
   b.add(PCSKETCH_OPTION(surface.scan_lines.min_anisotropy),
         {.range = closed(1, 1e6),
          .help = "...and its lines lie this many times farther apart than their points along them"});
+  b.add(PCSKETCH_OPTION(surface.scan_lines.majority_fraction),
+        {.range = closed(0, 1),
+         .help = "Where more of the neighbourhoods than this are lines, they need only lie farther apart by..."});
+  b.add(PCSKETCH_OPTION(surface.scan_lines.majority_min_anisotropy),
+        {.range = closed(1, 1e6), .help = "...this many times their points' spacing along them"});
   b.add(PCSKETCH_OPTION(surface.scan_lines.noisy_dimension),
         {.range = closed(0, 2),
          .help = "Noisy scan lines: the cloud's median local dimension falls to this at 8 to 64 neighbours (0: not "

@@ -171,8 +171,11 @@ ScanLines find_scan_lines(const std::vector<Vec3f>& points, const neighbourhood:
   result.line_fraction = static_cast<double>(gaps.size()) / static_cast<double>(samples);
   if (result.line_fraction > options.min_fraction) {
     result.anisotropy = quantile(gaps, 0.5) / std::max(quantile(nearest, 0.5), 1e-30);
+    const float least = result.line_fraction > options.majority_fraction
+                            ? std::min(options.min_anisotropy, options.majority_min_anisotropy)
+                            : options.min_anisotropy;
     // Where a surface slopes along the lines, they lie farther apart on it than their spacing: the lower quartile.
-    if (result.anisotropy >= options.min_anisotropy) result.spacing = quantile(gaps, 0.25);
+    if (result.anisotropy >= least) result.spacing = quantile(gaps, 0.25);
   }
   if (result.found()) return result;
   // Light noise puts the nearest point off a line within its own tube, heavier noise hides the line from the PCA.

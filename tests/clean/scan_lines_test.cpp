@@ -52,8 +52,25 @@ TEST(ScanLines, EvenSamplesAreNotLines) {
   EXPECT_FALSE(run(test::cube(1.f, {.n = 20000, .seed = 4, .noise_sigma = 0.004f}).positions).found());
   EXPECT_FALSE(run(test::sphere(1.f, {.n = 20000, .seed = 5, .noise_sigma = 0.01f}).positions).found());
   EXPECT_FALSE(run(test::torus(1.f, 0.3f, {.n = 20000, .seed = 6, .noise_sigma = 0.003f}).positions).found());
-  // 4:1 rings: the nearest neighbours still span two rings often enough; drawn as they are.
-  EXPECT_FALSE(run(test::sphere_rings(80, 4.f)).found());
+  // 3:1 rings: the 8 nearest points span two rings, no sample lies on a line; drawn as they are.
+  EXPECT_FALSE(run(test::sphere_rings(80, 3.f)).found());
+}
+
+TEST(ScanLines, SparseRingsAreFoundWhereMostPointsLieOnThem) {
+  // 4:1 and 6:1 rings: every sample lies on a line, the next one 4 or 6 nearest-neighbour distances away. The vertices
+  // of CAD meshes lie on lines as far apart (their edges, at most 5:1), but fewer than half of them: a minority of
+  // samples on lines keeps the 8:1 bound (the noisy lines' test, which sees 6:1 rings too, off).
+  const double step = 2 * std::sin(0.5 * 3.14159265358979 / 81);
+  for (const float density : {4.f, 6.f}) {
+    SCOPED_TRACE(density);
+    const std::vector<Vec3f> rings = test::sphere_rings(80, density);
+    const ScanLines found = run(rings);
+    ASSERT_TRUE(found.found()) << found.line_fraction << " of the samples on lines, anisotropy " << found.anisotropy;
+    EXPECT_GT(found.line_fraction, 0.9);
+    EXPECT_NEAR(found.anisotropy, density, 0.5);
+    EXPECT_NEAR(found.spacing, step, 0.25 * step);
+    EXPECT_FALSE(run(rings, {.majority_fraction = 1.f, .noisy_dimension = 0}).found());
+  }
 }
 
 }  // namespace

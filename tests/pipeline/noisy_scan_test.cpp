@@ -244,5 +244,25 @@ TEST(ScanLines, SphereOnRingsIsDrawnAsItsCircle) {
   }
 }
 
+TEST(ScanLines, SparseRingsKeepTheirOutline) {
+  // 80 rings 4 and 6 times denser along them than apart, seen from the side. Drawn as they are, the outline broke
+  // where it crosses the rings (a point's 16 nearest all lie on its own ring, so the outline test sees the gaps between
+  // rings as empty); thinned to the rings' spacing, it goes all round.
+  for (const float density : {4.f, 6.f}) {
+    SCOPED_TRACE(density);
+    PointCloud cloud;
+    cloud.positions = test::sphere_rings(80, density);
+    const DrawOptions options;
+    const Prepared prepared = prepare(PointCloud(cloud), options);
+    ASSERT_TRUE(prepared.surface.scan_lines.found());
+    const SphereStrokes thinned = sphere_strokes(prepared, options, 6.f);
+    EXPECT_GE(thinned.covered, 0.95);
+    DrawOptions keep = options;
+    keep.surface.scan_lines.enabled = false;
+    const SphereStrokes kept = sphere_strokes(prepare(std::move(cloud), keep), keep, 6.f);
+    EXPECT_LT(kept.covered, thinned.covered - 0.1) << kept.covered << " of the circle drawn from every point";
+  }
+}
+
 }  // namespace
 }  // namespace pcsketch

@@ -28,6 +28,13 @@ struct ScanLineOptions {
   /// point off it) than the median nearest-neighbour distance: 11–60 on those lines. The vertices of CAD meshes whose
   /// faces hold none lie on lines too, their edges (25–46% of the points), but 5:1 apart or less.
   float min_anisotropy = 8.f;
+  /// Where more than this fraction of the sampled points lie on lines (profile scans 87–100%; CAD vertices at most
+  /// 46%, evenly sampled surfaces 0.2%)...
+  float majority_fraction = 0.6f;
+  /// ...lines this many times farther apart than the median nearest-neighbour distance are enough. Drawn as they were,
+  /// a sphere's 4:1 to 6:1 rings lost their outline where it crosses them, and a 6:1 profile scan of the held-out
+  /// cheese became a page of its lines (docs/geometry.md, "Scan lines").
+  float majority_min_anisotropy = 3.5f;
   /// Noisy lines, whose 8 nearest points make no line: the cloud's median local dimension (log 2 over the log of the
   /// ratio of the distances to the 2m-th and m-th neighbours) falls to this at m = 8, 16 or 32 and rises past 1.8 at
   /// a larger m. Evenly sampled surfaces, noisy or not, 1.89–3.1; the 60 cuts of bench_scans with noise of 0.05–0.1%
