@@ -45,7 +45,7 @@ struct Condition {
   double outliers = 0;   ///< fraction of n
   std::size_t clump = 1;
   /// Only the samples whose face looks towards the first view's camera: a scan from one side, whose border is the
-  /// outline and the rims of that view. Scored from that view only, against the faces sampled (facing_faces).
+  /// outline and the rims of that view. Scored from that view only, against the faces sampled (kept_faces).
   bool one_side = false;
   /// The mesh's own vertices instead of samples (n unused): a sparse cloud whose points lie on the true contours.
   bool vertices = false;
@@ -166,40 +166,49 @@ PointCloud scan_line_samples(const Mesh& mesh, std::size_t lines, std::size_t n,
   return cloud;
 }
 
-/// `overlay_dir`: where --overlay writes its SVGs, empty: none.
-/// The faces of `mesh` that look towards `direction`: what a scan from that side holds. The truth of a one-side scan,
-/// whose border they give: the whole mesh's truth held walls seen edge-on and the inside of open shells seen through
-/// their rims, which no point of such a scan lies on (a mushroom's stem drawn as a square round its cap, 0.42 / 0.46).
-Mesh facing_faces(const Mesh& mesh, const Vec3d& direction) {
-  Mesh facing = mesh;
-  std::erase_if(facing.faces, [&](const std::array<std::uint32_t, 3>& f) {
-    const Vec3f& a = mesh.vertices[f[0]];
-    return !((mesh.vertices[f[1]] - a).cross(mesh.vertices[f[2]] - a).cast<double>().dot(direction) < 0);
-  });
+/// Which faces of `mesh` look towards `direction` (their normal against it): what a scan from that side records.
+std::vector<char> facing_faces(const Mesh& mesh, const Vec3d& direction) {
+  std::vector<char> facing(mesh.faces.size());
+  for (std::size_t f = 0; f < facing.size(); ++f) {
+    const Vec3d a = mesh.vertices[mesh.faces[f][0]].cast<double>();
+    const Vec3d b = mesh.vertices[mesh.faces[f][1]].cast<double>(), c = mesh.vertices[mesh.faces[f][2]].cast<double>();
+    facing[f] = (b - a).cross(c - a).dot(direction) < 0;
+  }
   return facing;
 }
 
+/// `mesh` with only the faces `keep` marks. The truth of a one-side scan is its facing faces, whose border they give:
+/// the whole mesh's truth held walls seen edge-on and the inside of open shells seen through their rims, which no
+/// point of such a scan lies on (a mushroom's stem drawn as a square round its cap, 0.42 / 0.46).
+Mesh kept_faces(const Mesh& mesh, const std::vector<char>& keep) {
+  Mesh kept = mesh;
+  kept.faces.clear();
+  for (std::size_t f = 0; f < keep.size(); ++f)
+    if (keep[f]) kept.faces.push_back(mesh.faces[f]);
+  return kept;
+}
+
+/// `overlay_dir`: where --overlay writes its SVGs, empty: none.
 std::string measure(const std::string& model, const Condition& c, std::size_t n, std::size_t views,
                     const DrawOptions& options, bool drawn_only, const std::string& overlay_dir) {
   // A name is a shared mesh; a path (held-out meshes) is read as given.
   const std::string path = model.find('/') == std::string::npos ? shared_data(model + ".off") : model;
   const Mesh whole = io::read_mesh(path);
-  const Mesh mesh = c.one_side ? facing_faces(whole, kViews[0]) : whole;
+  // A one-side scan keeps the samples of the faces that look at the first view, and is scored against those faces.
+  const std::vector<char> facing = c.one_side ? facing_faces(whole, kViews[0]) : std::vector<char>{};
+  const Mesh mesh = c.one_side ? kept_faces(whole, facing) : whole;
   PointCloud cloud = c.vertices     ? io::read_point_cloud(path).cloud
                      : c.scan_lines ? scan_line_samples(whole, c.scan_lines, n, c.noise)
                                     : io::sample_mesh(whole, {.n = n,
                                                               .noise_sigma_factor = c.noise,
                                                               .seed = 2024,
-                                                              .keep_normals = c.one_side,
                                                               .outlier_fraction = c.outliers,
                                                               .outlier_clump = c.clump});
   if (c.one_side) {
-    std::vector<std::uint32_t> facing;
+    std::vector<std::uint32_t> seen;
     for (std::uint32_t i = 0; i < cloud.size(); ++i)
-      if (cloud.source_index[i] == io::kOutlier || cloud.normals[i].cast<double>().dot(kViews[0]) < 0)
-        facing.push_back(i);
-    keep_points(cloud, facing);
-    cloud.normals.clear();  // a raw scan's
+      if (cloud.source_index[i] == io::kOutlier || facing[cloud.source_index[i]]) seen.push_back(i);
+    keep_points(cloud, seen);
     views = 1;
   }
   shuffle(cloud, 2024);
