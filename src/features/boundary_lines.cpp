@@ -14,6 +14,7 @@
 #include <string>
 #include <utility>
 
+#include "core/angles.h"
 #include "core/angular_gap.h"
 #include "core/parallel_chunks.h"
 #include "core/tangent_frame.h"
@@ -25,7 +26,7 @@ namespace pcsketch::features {
 
 namespace {
 
-constexpr float kDegToRad = 3.14159265358979f / 180.f;
+using pcsketch::detail::kDegToRad;
 constexpr std::uint8_t kBorder = 1, kHole = 2;
 constexpr std::uint32_t kMinRimPoints = 8;
 

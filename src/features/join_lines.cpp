@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <tuple>
 
+#include "core/angles.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
 
@@ -64,7 +64,7 @@ JoinResult join_lines(std::vector<Polyline> lines, float radius, float spacing, 
     throw Error("ridge/valley joining: smoothing iterations must be >= 0 and weight in [0, 1]");
 
   const float reach = options.join_distance_alpha * radius;
-  const float cos_beta = std::cos(options.join_angle_beta_deg * std::numbers::pi_v<float> / 180.f);
+  const float cos_beta = std::cos(options.join_angle_beta_deg * pcsketch::detail::kDegToRad);
   JoinResult result;
   std::vector<bool> alive(lines.size(), true);
 

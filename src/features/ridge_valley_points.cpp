@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <string>
 
+#include "core/angles.h"
 #include "core/parallel_chunks.h"
 #include "pcsketch/core/error.h"
 
@@ -91,7 +91,7 @@ DetectionResult detect_ridge_valley_points(const std::vector<Vec3f>& points, con
   result.valley_threshold = -valley_min;
 
   const bool suppress = salient && options.non_maximum_suppression;
-  const float cone_cos = std::cos(options.suppression_cone_deg * std::numbers::pi_v<float> / 180.f);
+  const float cone_cos = std::cos(options.suppression_cone_deg * pcsketch::detail::kDegToRad);
   result.labels.assign(n, PointLabel::None);
   pcsketch::detail::parallel_chunks(n, progress, "ridge/valley detection", [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i != end; ++i) {

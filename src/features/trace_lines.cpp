@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <numbers>
 
+#include "core/angles.h"
 #include "core/progress.h"
 #include "pcsketch/core/error.h"
 #include "pcsketch/neighbourhood/kd_tree.h"
@@ -246,7 +246,7 @@ TraceResult trace_lines(const std::vector<Vec3f>& points, const std::vector<Poin
     }
     KindTracer tracer(std::move(sub_points), std::move(sub_curvature), result.radius,
                       options.corridor_fraction * result.radius,
-                      std::cos(options.max_turn_deg * std::numbers::pi_v<float> / 180.f));
+                      std::cos(options.max_turn_deg * pcsketch::detail::kDegToRad));
     for (std::uint32_t s = 0; s < tracer.size(); ++s) {
       steps.at(seeds_done + s);
       if (tracer.used(s)) continue;

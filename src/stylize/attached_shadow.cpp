@@ -9,8 +9,8 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 
+#include "core/angles.h"
 #include "shadow_detail.h"
 
 namespace pcsketch::stylize::detail {
@@ -252,7 +252,7 @@ std::vector<Stroke> attached_hatching(const ShadowInput& in, const ShadowOptions
   const std::size_t levels = o.attached_levels.size();
   for (std::size_t level = 0; level < levels; ++level) {
     const float theta =
-        (o.hatch_angle_deg + static_cast<float>(level) * o.cross_angle_deg) * std::numbers::pi_v<float> / 180.f;
+        (o.hatch_angle_deg + static_cast<float>(level) * o.cross_angle_deg) * pcsketch::detail::kDegToRad;
     const Vec2f dir(std::cos(theta), -std::sin(theta));  // v points down: counter-clockwise as seen
     const Vec2f normal(-dir.y(), dir.x());
     // Lines m·x = j·spacing (anchored at the image origin, so they do not move with the box) crossing the box; the

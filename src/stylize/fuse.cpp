@@ -5,9 +5,9 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <string>
 
+#include "core/angles.h"
 #include "pcsketch/core/error.h"
 
 namespace pcsketch::stylize {
@@ -255,7 +255,7 @@ FusionResult fuse_strokes(std::vector<Stroke> strokes, const std::vector<FusionR
   for (std::uint32_t s = 0; s < count; ++s) drawn_by[s].resize(strokes[s].image_points.size());
   if (!order.empty()) {
     const SegmentGrid grid(strokes, takes_part, distance);
-    const float cos_max = std::cos(o.max_angle_deg * std::numbers::pi_v<float> / 180.f);
+    const float cos_max = std::cos(o.max_angle_deg * pcsketch::detail::kDegToRad);
     // In drawing order: a stroke's own matches are final before any later stroke looks at them.
     for (const std::uint32_t s : order) {
       drawn_by[s] = matches(strokes, s, position, drawn_by, grid, distance, cos_max);

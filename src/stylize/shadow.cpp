@@ -8,9 +8,9 @@
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <string>
 
+#include "core/angles.h"
 #include "pcsketch/core/error.h"
 #include "shadow_detail.h"
 
@@ -18,7 +18,7 @@ namespace pcsketch::stylize {
 
 namespace {
 
-constexpr float kDegToRad = std::numbers::pi_v<float> / 180.f;
+using pcsketch::detail::kDegToRad;
 
 /// A maximal chain of vertex indices whose consecutive segments all passed a test; closed when it is the whole loop.
 struct Chain {

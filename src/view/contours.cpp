@@ -12,6 +12,7 @@
 #include <span>
 
 #include "contour_walk.h"
+#include "core/angles.h"
 #include "core/nth_value.h"
 #include "core/progress.h"
 #include "depth_edges.h"
@@ -26,8 +27,7 @@ namespace pcsketch::view {
 
 namespace {
 
-constexpr float kPi = 3.14159265358979f;
-constexpr float kDegToRad = kPi / 180.f;
+using pcsketch::detail::kDegToRad;
 
 using detail::polyline_length;
 using detail::Walker;

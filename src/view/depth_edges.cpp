@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/angles.h"
 #include "core/angular_gap.h"
 #include "pcsketch/features/boundary_lines.h"
 #include "point_grid.h"
@@ -16,7 +17,7 @@ namespace pcsketch::view::detail {
 
 namespace {
 
-constexpr float kDegToRad = 3.14159265358979f / 180.f;
+using pcsketch::detail::kDegToRad;
 
 /// A depth-edge candidate of the view and the bisector of the gap its projected neighbours leave in the image.
 struct Candidate {

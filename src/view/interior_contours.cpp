@@ -6,13 +6,14 @@
 #include <vector>
 
 #include "contour_walk.h"
+#include "core/angles.h"
 #include "point_grid.h"
 
 namespace pcsketch::view::detail {
 
 namespace {
 
-constexpr float kDegToRad = 3.14159265358979f / 180.f;
+using pcsketch::detail::kDegToRad;
 
 /// Which rim samples the outline already draws: those within `dedupe` of its vertices or of points along its
 /// segments every h/2. The outline's samples are visited one at a time against a grid of the rim, not stored: an

@@ -8,17 +8,18 @@
 #include <optional>
 #include <utility>
 
+#include "core/angles.h"
 #include "core/angular_gap.h"
 #include "core/parallel_chunks.h"
-#include "pcsketch/features/boundary_lines.h"
 #include "image_cells.h"
+#include "pcsketch/features/boundary_lines.h"
 #include "point_grid.h"
 
 namespace pcsketch::view::detail {
 
 namespace {
 
-constexpr float kDegToRad = 3.14159265358979f / 180.f;
+using pcsketch::detail::kDegToRad;
 /// Image cell, in mean point spacings, within which one point stands for all in the outline test.
 constexpr float kImageCellFactor = 0.25f;
 
